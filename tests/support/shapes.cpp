@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "support/shapes.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace meshquilt::test::shapes {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Two triangles for the quad a b c d (counter-clockwise).
+void add_quad(Mesh& m, int a, int b, int c, int d) {
+    m.faces.emplace_back(a, b, c);
+    m.faces.emplace_back(a, c, d);
+}
+
+}  // namespace
+
+Mesh cube(double size, const Vec3& origin) {
+    Mesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.push_back(origin + size * Vec3((i & 1) ? 1.0 : 0.0, (i & 2) ? 1.0 : 0.0, (i & 4) ? 1.0 : 0.0));
+    // vertex i has x = bit 0, y = bit 1, z = bit 2
+    add_quad(m, 0, 2, 3, 1);  // z = 0, normal -z
+    add_quad(m, 4, 5, 7, 6);  // z = 1, normal +z
+    add_quad(m, 0, 1, 5, 4);  // y = 0, normal -y
+    add_quad(m, 2, 6, 7, 3);  // y = 1, normal +y
+    add_quad(m, 0, 4, 6, 2);  // x = 0, normal -x
+    add_quad(m, 1, 3, 7, 5);  // x = 1, normal +x
+    return m;
+}
+
+Mesh torus(double major, double minor, int nu, int nv) {
+    if (nu < 3 || nv < 3) throw std::invalid_argument("torus needs nu, nv >= 3");
+    Mesh m;
+    for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nv; ++j) {
+            const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
+            m.vertices.emplace_back((major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
+                                    minor * std::sin(v));
+        }
+    auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+    for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nv; ++j) add_quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+    return m;
+}
+
+Mesh open_cylinder(double radius, double height, int segments, int rings) {
+    if (segments < 3 || rings < 1) throw std::invalid_argument("open_cylinder needs segments >= 3, rings >= 1");
+    Mesh m;
+    for (int r = 0; r <= rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            const double a = 2 * kPi * s / segments;
+            m.vertices.emplace_back(radius * std::cos(a), radius * std::sin(a), height * r / rings);
+        }
+    auto id = [&](int r, int s) { return r * segments + (s % segments); };
+    for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < segments; ++s) add_quad(m, id(r, s), id(r, s + 1), id(r + 1, s + 1), id(r + 1, s));
+    return m;
+}
+
+Mesh grid(int n, double size) {
+    Mesh m;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) m.vertices.emplace_back(size * i / n, size * j / n, 0.0);
+    auto id = [&](int i, int j) { return j * (n + 1) + i; };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) add_quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+    return m;
+}
+
+Mesh voxels(const std::vector<std::array<int, 3>>& cells) {
+    const std::set<std::array<int, 3>> filled(cells.begin(), cells.end());
+    Mesh m;
+    std::map<std::array<int, 3>, int> index;
+    auto vertex = [&](std::array<int, 3> p) {
+        auto [it, inserted] = index.try_emplace(p, static_cast<int>(m.vertices.size()));
+        if (inserted) m.vertices.emplace_back(p[0], p[1], p[2]);
+        return it->second;
+    };
+    for (const auto& c : filled)
+        for (int axis = 0; axis < 3; ++axis)
+            for (int side = 0; side < 2; ++side) {
+                std::array<int, 3> n = c;
+                n[static_cast<std::size_t>(axis)] += side ? 1 : -1;
+                if (filled.count(n)) continue;
+                // The face of the voxel on plane axis = c[axis] + side, with the other two axes u, v
+                // chosen so (u, v, axis) is right-handed; counter-clockwise seen from outside.
+                const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+                std::array<int, 3> p[4];
+                for (int k = 0; k < 4; ++k) {
+                    p[k] = c;
+                    p[k][static_cast<std::size_t>(axis)] += side;
+                }
+                p[1][static_cast<std::size_t>(u)] += 1;
+                p[2][static_cast<std::size_t>(u)] += 1;
+                p[2][static_cast<std::size_t>(v)] += 1;
+                p[3][static_cast<std::size_t>(v)] += 1;
+                const int a = vertex(p[0]), b = vertex(p[1]), cc = vertex(p[2]), d = vertex(p[3]);
+                if (side) add_quad(m, a, b, cc, d);
+                else add_quad(m, a, d, cc, b);
+            }
+    return m;
+}
+
+Mesh double_torus() {
+    std::vector<std::array<int, 3>> cells;
+    for (int x = 0; x < 5; ++x)
+        for (int y = 0; y < 3; ++y)
+            if (!(y == 1 && (x == 1 || x == 3))) cells.push_back({x, y, 0});
+    return voxels(cells);
+}
+
+Mesh concat(const Mesh& a, const Mesh& b) {
+    Mesh m = a;
+    const int offset = static_cast<int>(a.vertices.size());
+    m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
+    for (const Tri& t : b.faces) m.faces.push_back(t + Tri::Constant(offset));
+    return m;
+}
+
+Mesh translated(Mesh mesh, const Vec3& offset) {
+    for (Vec3& v : mesh.vertices) v += offset;
+    return mesh;
+}
+
+Mesh flipped(Mesh mesh) {
+    for (Tri& t : mesh.faces) std::swap(t[1], t[2]);
+    return mesh;
+}
+
+Mesh soup(const Mesh& mesh) {
+    Mesh m;
+    for (const Tri& t : mesh.faces) {
+        const int base = static_cast<int>(m.vertices.size());
+        for (int k = 0; k < 3; ++k) m.vertices.push_back(mesh.vertices[static_cast<std::size_t>(t[k])]);
+        m.faces.emplace_back(base, base + 1, base + 2);
+    }
+    return m;
+}
+
+}  // namespace meshquilt::test::shapes

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#pragma once
+/// \file shapes.h
+/// Small meshes with known topology for the io, analysis and CLI tests: closed surfaces of known
+/// genus, open surfaces with a known number of boundary loops, and deliberately broken variants.
+/// Unless stated, faces are counter-clockwise seen from outside (outward normals).
+
+#include "meshquilt/mesh.h"
+
+#include <array>
+#include <vector>
+
+namespace meshquilt::test::shapes {
+
+/// The axis-aligned cube [origin, origin + size]^3: 8 vertices, 12 faces, genus 0, volume size^3.
+Mesh cube(double size = 1.0, const Vec3& origin = Vec3::Zero());
+
+/// A torus around the z axis: `major` radius of the centre line, `minor` radius of the tube,
+/// `nu` x `nv` quads (each >= 3) split into triangles. Genus 1, closed.
+Mesh torus(double major = 2.0, double minor = 0.5, int nu = 24, int nv = 12);
+
+/// An open cylinder (a tube without caps) around the z axis from z = 0 to `height`:
+/// `segments` around (>= 3), `rings` along (>= 1). Two boundary loops, genus 0.
+Mesh open_cylinder(double radius = 1.0, double height = 2.0, int segments = 16, int rings = 4);
+
+/// A flat square [0, size]^2 in the plane z = 0, `n` x `n` quads split into triangles, normals +z.
+/// One boundary loop, genus 0.
+Mesh grid(int n = 4, double size = 1.0);
+
+/// The closed outer surface of a union of unit voxels (cells given by their integer minimum
+/// corners): every voxel face not shared with another voxel becomes two triangles; corners on the
+/// integer lattice are shared. Voxels touching only along an edge or at a corner give a
+/// non-manifold edge or vertex, which some tests want.
+Mesh voxels(const std::vector<std::array<int, 3>>& cells);
+
+/// A slab of 5 x 3 x 1 voxels with two square holes through it: a closed surface of genus 2.
+Mesh double_torus();
+
+/// Two copies of `a` and `b` in one mesh (b's indices shifted).
+Mesh concat(const Mesh& a, const Mesh& b);
+
+/// `mesh` moved by `offset`.
+Mesh translated(Mesh mesh, const Vec3& offset);
+
+/// Every face reversed: an inside-out copy.
+Mesh flipped(Mesh mesh);
+
+/// A triangle soup: every face gets its own three vertices (like STL), positions unchanged.
+Mesh soup(const Mesh& mesh);
+
+}  // namespace meshquilt::test::shapes
