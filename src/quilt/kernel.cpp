@@ -1,0 +1,655 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "quilt/kernel.h"
+
+#include "core/intersect.h"
+#include "meshquilt/errors.h"
+#include "quilt/deform.h"
+
+#include <maxflow.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+namespace meshquilt::quilt {
+
+namespace {
+
+using Side = std::function<bool(double, double)>;
+
+bool in_overlap(const Side& ov, const Vec3& p) { return ov(p.x(), p.y()); }
+
+Vec3 centroid(const Mesh& m, int f) {
+    const Tri& t = m.faces[static_cast<std::size_t>(f)];
+    return (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+}
+
+double mean_edge(const Mesh& m, int f) {
+    const Tri& t = m.faces[static_cast<std::size_t>(f)];
+    const auto& V = m.vertices;
+    return ((V[t[0]] - V[t[1]]).norm() + (V[t[1]] - V[t[2]]).norm() + (V[t[2]] - V[t[0]]).norm()) / 3.0;
+}
+
+std::uint64_t edge_key(int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); }
+
+/// Faces adjacent across each edge: adjacency[f][k] is the face across edge (f[k], f[k+1]) or -1.
+std::vector<std::array<int, 3>> face_adjacency(const Mesh& m) {
+    std::unordered_map<std::uint64_t, int> owner;
+    owner.reserve(m.faces.size() * 3);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) owner[edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3])] = static_cast<int>(f);
+    std::vector<std::array<int, 3>> adj(m.faces.size(), {-1, -1, -1});
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            auto it = owner.find(edge_key(m.faces[f][(k + 1) % 3], m.faces[f][k]));
+            if (it != owner.end()) adj[f][static_cast<std::size_t>(k)] = it->second;
+        }
+    return adj;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Projected-overlap test (Section 2.5): do the xy projections of two elements overlap?
+// Both are rasterised on a common grid over the intersection of their footprints.
+
+bool projections_overlap(const Mesh& a, const Mesh& b, double pixel) {
+    Box3 ba = bounding_box(a), bb = bounding_box(b);
+    const double x0 = std::max(ba.min.x(), bb.min.x()), x1 = std::min(ba.max.x(), bb.max.x());
+    const double y0 = std::max(ba.min.y(), bb.min.y()), y1 = std::min(ba.max.y(), bb.max.y());
+    if (x0 > x1 || y0 > y1) return false;
+    pixel = std::max({pixel, (x1 - x0) / 512.0, (y1 - y0) / 512.0, 1e-12});
+    const int nx = static_cast<int>(std::floor((x1 - x0) / pixel)) + 1;
+    const int ny = static_cast<int>(std::floor((y1 - y0) / pixel)) + 1;
+    auto raster = [&](const Mesh& m, const std::function<bool(int, int)>& visit) {
+        for (const Tri& f : m.faces) {
+            const Vec3& p = m.vertices[f[0]];
+            const Vec3& q = m.vertices[f[1]];
+            const Vec3& r = m.vertices[f[2]];
+            const double fx0 = std::min({p.x(), q.x(), r.x()}), fx1 = std::max({p.x(), q.x(), r.x()});
+            const double fy0 = std::min({p.y(), q.y(), r.y()}), fy1 = std::max({p.y(), q.y(), r.y()});
+            if (fx1 < x0 || fx0 > x1 || fy1 < y0 || fy0 > y1) continue;
+            const int i0 = std::max(0, static_cast<int>(std::floor((fx0 - x0) / pixel)));
+            const int i1 = std::min(nx - 1, static_cast<int>(std::floor((fx1 - x0) / pixel)));
+            const int j0 = std::max(0, static_cast<int>(std::floor((fy0 - y0) / pixel)));
+            const int j1 = std::min(ny - 1, static_cast<int>(std::floor((fy1 - y0) / pixel)));
+            const double area = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i) {
+                    const double cx = x0 + (i + 0.5) * pixel, cy = y0 + (j + 0.5) * pixel;
+                    bool inside;
+                    if (std::abs(area) < 1e-300) {
+                        inside = true;  // vertical triangle: its footprint is a segment; count its box
+                    } else {
+                        const double w0 = (q.x() - cx) * (r.y() - cy) - (q.y() - cy) * (r.x() - cx);
+                        const double w1 = (r.x() - cx) * (p.y() - cy) - (r.y() - cy) * (p.x() - cx);
+                        const double w2 = (p.x() - cx) * (q.y() - cy) - (p.y() - cy) * (q.x() - cx);
+                        inside = area > 0 ? (w0 >= 0 && w1 >= 0 && w2 >= 0) : (w0 <= 0 && w1 <= 0 && w2 <= 0);
+                        // Triangles smaller than a pixel still mark the pixel they lie in.
+                        inside = inside || (i0 == i1 && j0 == j1);
+                    }
+                    if (inside && visit(i, j)) return true;
+                }
+        }
+        return false;
+    };
+    std::vector<char> mask(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0);
+    raster(a, [&](int i, int j) {
+        mask[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)] = 1;
+        return false;
+    });
+    return raster(b, [&](int i, int j) { return mask[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)] != 0; });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Graph cut of one element (Section 2.7, Eq. 7).
+
+struct CutResult {
+    std::vector<char> keep;      ///< per face: SOURCE side (kept)
+    std::vector<char> anchored;  ///< per face: linked to SOURCE with infinite weight
+};
+
+void maxflow_error(const char* msg) { throw BackendFailure(std::string("graph cut: ") + msg); }
+
+/// Appends the selected faces of `m` to `dst` with their own (compacted) vertices.
+void append_faces(const Mesh& m, const std::vector<char>& sel, Mesh& dst) {
+    std::vector<int> map(m.vertices.size(), -1);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        if (!sel[f]) continue;
+        Tri t;
+        for (int k = 0; k < 3; ++k) {
+            int& id = map[m.faces[f][k]];
+            if (id < 0) {
+                id = static_cast<int>(dst.vertices.size());
+                dst.vertices.push_back(m.vertices[m.faces[f][k]]);
+            }
+            t[k] = id;
+        }
+        dst.faces.push_back(t);
+    }
+}
+
+/// Faces an element must keep: those farther than `reach` from its partner (only this element
+/// provides geometry there) and, with `side`, those outside its side of the overlap.
+std::vector<char> anchored_faces(const Mesh& m, const TriangleIndex& partner, double reach, const Side* side) {
+    std::vector<char> out(m.faces.size(), 0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const Vec3 c = centroid(m, static_cast<int>(f));
+        out[f] = (side && !in_overlap(*side, c)) || partner.closest(c).distance > reach;
+    }
+    return out;
+}
+
+/// Cuts element `a` against its partner `b` (Section 2.7). Both elements must keep the faces only
+/// they provide (`a_anchor`, `b_anchor`: outside the overlap, or away from the partner). Every point p
+/// gets phi(p) = dist(p, a's anchored part) - dist(p, b's anchored part): the SOURCE rule links faces
+/// with phi < -band (a's own ground) to SOURCE, the SINK rule faces with phi > band (b's ground) to
+/// SINK, and the min cut with Eq. 7 weights places the cut inside the band. Because both elements are
+/// cut by the same field, their cuts meet. When `b_keep` is given (b was cut first), faces of `a`
+/// near kept parts of `b` are pushed towards deletion and those near deleted parts towards keeping.
+CutResult cut_element(const Mesh& a, const TriangleIndex& b_index, const std::vector<char>& a_anchor, const std::vector<char>& b_anchor,
+                      const KernelParams& params, const std::vector<char>* b_keep) {
+    const double unit = params.metric.unit;
+    const double pair_distance = params.anchor_reach * unit;
+    const double band = unit;
+    const std::size_t nf = a.faces.size();
+    const auto adj_a = face_adjacency(a);
+
+    std::vector<char> used(a.vertices.size(), 0);
+    for (const Tri& f : a.faces)
+        for (int k = 0; k < 3; ++k) used[f[k]] = 1;
+    std::vector<double> dist_b(a.vertices.size(), 0.0);
+    for (std::size_t v = 0; v < a.vertices.size(); ++v)
+        if (used[v]) dist_b[v] = b_index.closest(a.vertices[v]).distance;
+
+    CutResult res;
+    res.anchored = a_anchor;
+    res.keep.assign(nf, 1);
+    Mesh a_own, b_own;
+    append_faces(a, a_anchor, a_own);
+    append_faces(b_index.mesh(), b_anchor, b_own);
+    const TriangleIndex a_own_index(a_own), b_own_index(b_own);
+    std::vector<int> partner_face(nf, -1);
+    std::vector<double> partner_dist(nf, 0.0);
+    std::vector<char> sink(nf, 0);
+    for (std::size_t f = 0; f < nf; ++f) {
+        const Vec3 c = centroid(a, static_cast<int>(f));
+        const ClosestHit h = b_index.closest(c);
+        partner_face[f] = h.face;
+        partner_dist[f] = h.distance;
+        if (res.anchored[f]) continue;
+        const double phi = a_own_index.closest(c).distance - b_own_index.closest(c).distance;
+        if (phi < -band) res.anchored[f] = 1;
+        else if (phi > band) sink[f] = 1;
+    }
+
+    using Graph = maxflow::Graph<double, double, double>;
+    Graph g(static_cast<int>(nf), static_cast<int>(nf * 3 / 2 + 1), maxflow_error);
+    g.add_node(static_cast<int>(nf));
+    const double inf = 1e15;
+    double mean_w = 0.0;
+    int count_w = 0;
+    for (std::size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int o = adj_a[f][static_cast<std::size_t>(k)];
+            if (o <= static_cast<int>(f)) continue;
+            const int vi = a.faces[f][k], vj = a.faces[f][(k + 1) % 3];
+            // Eq. 7, lengths in units of the swatch's mean edge length.
+            const double w = (1.0 + (a.vertices[vi] - a.vertices[vj]).norm() / unit) *
+                             (1.0 + dist_b[vi] / unit + dist_b[vj] / unit);
+            g.add_edge(static_cast<int>(f), o, w, w);
+            mean_w += w;
+            ++count_w;
+        }
+    mean_w = count_w > 0 ? mean_w / count_w : 1.0;
+    for (std::size_t f = 0; f < nf; ++f) {
+        if (res.anchored[f]) g.add_tweights(static_cast<int>(f), inf, 0);
+        else if (sink[f]) g.add_tweights(static_cast<int>(f), 0, inf);
+    }
+    if (b_keep) {
+        const double w = 100.0 * mean_w;
+        for (std::size_t f = 0; f < nf; ++f) {
+            if (res.anchored[f] || sink[f] || partner_dist[f] > pair_distance) continue;
+            if ((*b_keep)[static_cast<std::size_t>(partner_face[f])]) g.add_tweights(static_cast<int>(f), 0, w);
+            else g.add_tweights(static_cast<int>(f), w, 0);
+        }
+    }
+    g.maxflow();
+    for (std::size_t f = 0; f < nf; ++f) res.keep[f] = g.what_segment(static_cast<int>(f)) == Graph::SOURCE;
+
+    return res;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Stitching helpers.
+
+/// The faces with keep[f] that belong to an edge-connected component containing an anchored face.
+std::vector<char> anchored_components(const Mesh& m, const CutResult& cut) {
+    const auto adj = face_adjacency(m);
+    std::vector<char> out(m.faces.size(), 0);
+    std::vector<int> stack;
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        if (cut.keep[f] && cut.anchored[f] && !out[f]) {
+            out[f] = 1;
+            stack.push_back(static_cast<int>(f));
+            while (!stack.empty()) {
+                const int g = stack.back();
+                stack.pop_back();
+                for (int o : adj[static_cast<std::size_t>(g)])
+                    if (o >= 0 && cut.keep[static_cast<std::size_t>(o)] && !out[static_cast<std::size_t>(o)]) {
+                        out[static_cast<std::size_t>(o)] = 1;
+                        stack.push_back(o);
+                    }
+            }
+        }
+    return out;
+}
+
+/// Boundary loops, each in the direction its faces traverse it. False when a vertex has several
+/// outgoing boundary edges (the boundary is not a set of simple loops).
+bool boundary_loops(const Mesh& m, std::vector<std::vector<int>>* loops) {
+    std::unordered_map<std::uint64_t, char> directed;
+    directed.reserve(m.faces.size() * 3);
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) directed[edge_key(f[k], f[(k + 1) % 3])] = 1;
+    std::map<int, int> next;
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            const int a = f[k], b = f[(k + 1) % 3];
+            if (directed.count(edge_key(b, a))) continue;
+            if (!next.emplace(a, b).second) return false;
+        }
+    std::map<int, char> done;
+    for (const auto& [start, unused] : next) {
+        if (done.count(start)) continue;
+        std::vector<int> loop;
+        int v = start;
+        while (!done.count(v)) {
+            done[v] = 1;
+            loop.push_back(v);
+            auto it = next.find(v);
+            if (it == next.end()) return false;
+            v = it->second;
+        }
+        if (v != start || loop.size() < 3) return false;
+        loops->push_back(std::move(loop));
+    }
+    return true;
+}
+
+Vec3 closest_on_polyline(const std::vector<Vec3>& V, const std::vector<int>& loop, const Vec3& p) {
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 out = p;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const Vec3& a = V[loop[i]];
+        const Vec3& b = V[loop[(i + 1) % loop.size()]];
+        const Vec3 ab = b - a;
+        const double len2 = ab.squaredNorm();
+        const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+        const Vec3 q = a + t * ab;
+        const double d = (q - p).squaredNorm();
+        if (d < best) {
+            best = d;
+            out = q;
+        }
+    }
+    return out;
+}
+
+double loop_distance(const std::vector<Vec3>& V, const std::vector<int>& la, const std::vector<int>& lb) {
+    double sum = 0.0;
+    for (int v : la) sum += (closest_on_polyline(V, lb, V[v]) - V[v]).norm();
+    return sum / static_cast<double>(la.size());
+}
+
+/// Joins loop `a` (of the old part, in its faces' direction) and loop `b` (of the new part, in its
+/// faces' direction) by a strip of triangles. The two parts are complementary, so `a` reversed runs
+/// along `b`. False when the loops run the wrong way round.
+bool zip_loops(const std::vector<Vec3>& V, std::vector<int> a, const std::vector<int>& b, std::vector<Tri>* faces) {
+    std::reverse(a.begin(), a.end());
+    const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
+    auto nearest_in_b = [&](const Vec3& p) {
+        int best = 0;
+        double bd = std::numeric_limits<double>::infinity();
+        for (int j = 0; j < m; ++j) {
+            const double d = (V[b[j]] - p).squaredNorm();
+            if (d < bd) {
+                bd = d;
+                best = j;
+            }
+        }
+        return best;
+    };
+    // Direction check: the nearest points of b should advance with a.
+    double agreement = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const int j = nearest_in_b(V[a[i]]);
+        const Vec3 da = V[a[(i + 1) % n]] - V[a[i]];
+        const Vec3 db = V[b[(j + 1) % m]] - V[b[(j + m - 1) % m]];
+        agreement += da.dot(db);
+    }
+    if (agreement <= 0.0) return false;
+    const int j0 = nearest_in_b(V[a[0]]);
+    std::vector<int> q(static_cast<std::size_t>(m));
+    for (int j = 0; j < m; ++j) q[static_cast<std::size_t>(j)] = b[(j0 + j) % m];
+    int i = 0, j = 0;
+    while (i < n || j < m) {
+        const int pi = a[i % n], pi1 = a[(i + 1) % n];
+        const int qj = q[static_cast<std::size_t>(j % m)], qj1 = q[static_cast<std::size_t>((j + 1) % m)];
+        const bool advance_a = j == m || (i < n && (V[pi1] - V[qj]).squaredNorm() < (V[pi] - V[qj1]).squaredNorm());
+        if (advance_a) {
+            faces->push_back(Tri(pi, pi1, qj));
+            ++i;
+        } else {
+            faces->push_back(Tri(pi, qj1, qj));
+            ++j;
+        }
+    }
+    return true;
+}
+
+/// Uniform Laplacian relaxation of the vertices within `rings` rings of `seed` vertices.
+void relax_seam(Mesh& m, const std::vector<int>& seeds, int rings, int iterations) {
+    std::vector<std::vector<int>> nbr(m.vertices.size());
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            nbr[f[k]].push_back(f[(k + 1) % 3]);
+            nbr[f[k]].push_back(f[(k + 2) % 3]);
+        }
+    for (auto& N : nbr) {
+        std::sort(N.begin(), N.end());
+        N.erase(std::unique(N.begin(), N.end()), N.end());
+    }
+    std::vector<int> depth(m.vertices.size(), -1);
+    std::vector<int> frontier = seeds, band;
+    for (int s : seeds) depth[s] = 0;
+    band = seeds;
+    for (int r = 1; r <= rings; ++r) {
+        std::vector<int> next;
+        for (int v : frontier)
+            for (int w : nbr[v])
+                if (depth[w] < 0) {
+                    depth[w] = r;
+                    next.push_back(w);
+                    band.push_back(w);
+                }
+        frontier = std::move(next);
+    }
+    std::sort(band.begin(), band.end());
+    for (int it = 0; it < iterations; ++it) {
+        std::vector<Vec3> moved(band.size());
+        for (std::size_t k = 0; k < band.size(); ++k) {
+            const int v = band[k];
+            Vec3 avg = Vec3::Zero();
+            for (int w : nbr[v]) avg += m.vertices[w];
+            avg /= static_cast<double>(std::max<std::size_t>(1, nbr[v].size()));
+            // Seam vertices move fully, the band fades out towards its edge.
+            const double weight = 0.5 * (1.0 - static_cast<double>(depth[v]) / (rings + 1));
+            moved[k] = m.vertices[v] + weight * (avg - m.vertices[v]);
+        }
+        for (std::size_t k = 0; k < band.size(); ++k) m.vertices[band[k]] = moved[k];
+    }
+}
+
+int count_components(const Mesh& m) {
+    std::vector<int> parent(m.vertices.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const Tri& f : m.faces) {
+        for (int k = 0; k < 3; ++k) used[f[k]] = 1;
+        parent[find(f[0])] = find(f[1]);
+        parent[find(f[1])] = find(f[2]);
+    }
+    int c = 0;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v)
+        if (used[v] && find(static_cast<int>(v)) == static_cast<int>(v)) ++c;
+    return c;
+}
+
+}  // namespace
+
+// -------------------------------------------------------------------------------------------------
+
+bool is_closed_oriented(const Mesh& m) {
+    std::unordered_map<std::uint64_t, int> count;
+    count.reserve(m.faces.size() * 3);
+    for (const Tri& f : m.faces) {
+        if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) return false;
+        for (int k = 0; k < 3; ++k)
+            if (++count[edge_key(f[k], f[(k + 1) % 3])] > 1) return false;
+    }
+    for (const auto& [key, c] : count) {
+        const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+        if (!count.count(edge_key(b, a))) return false;
+    }
+    return !m.faces.empty();
+}
+
+Mesh compact(const Mesh& m) {
+    Mesh out;
+    std::vector<char> all(m.faces.size(), 1);
+    append_faces(m, all, out);
+    return out;
+}
+
+bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, const KernelParams& params, Mesh* result, std::string* why,
+                     StitchOutcome* outcome) {
+    auto fail = [why](const char* reason) {
+        if (why) *why = reason;
+        return false;
+    };
+    const TriangleIndex idx_out(c_out), idx_in(c_in);
+    const double reach = params.anchor_reach * params.metric.unit;
+    const std::vector<char> anchor_out = anchored_faces(c_out, idx_in, reach, &ov.old_side);
+    const std::vector<char> anchor_in = anchored_faces(c_in, idx_out, reach, nullptr);
+    const bool out_free = std::find(anchor_out.begin(), anchor_out.end(), 1) == anchor_out.end();
+    const bool in_free = std::find(anchor_in.begin(), anchor_in.end(), 1) == anchor_in.end();
+    if (outcome) *outcome = StitchOutcome::Stitched;
+    if (out_free) {  // the old element lies entirely where the new one is: replace it (Section 2.7)
+        if (outcome) *outcome = StitchOutcome::UseNew;
+        *result = c_in;
+        return true;
+    }
+    if (in_free) {  // the new element lies entirely where the old one is: keep the old
+        if (outcome) *outcome = StitchOutcome::KeepOld;
+        *result = c_out;
+        return true;
+    }
+    CutResult cut_out = cut_element(c_out, idx_in, anchor_out, anchor_in, params, nullptr);
+    CutResult cut_in = cut_element(c_in, idx_out, anchor_in, anchor_out, params, &cut_out.keep);
+    const std::vector<char> sel_out = anchored_components(c_out, cut_out);
+    const std::vector<char> sel_in = anchored_components(c_in, cut_in);
+    const auto kept_out = std::count(sel_out.begin(), sel_out.end(), 1);
+    const auto kept_in = std::count(sel_in.begin(), sel_in.end(), 1);
+    if (kept_out == 0 || kept_in == 0) return fail("a cut kept nothing");
+
+    Mesh part_out, part_in;
+    append_faces(c_out, sel_out, part_out);
+    append_faces(c_in, sel_in, part_in);
+    std::vector<std::vector<int>> loops_out, loops_in;
+    if (!boundary_loops(part_out, &loops_out) || !boundary_loops(part_in, &loops_in)) return fail("cut boundary is not simple loops");
+    if (loops_out.empty()) return fail("cut left no boundary");
+    if (loops_out.size() != loops_in.size()) return fail("different numbers of cut loops");
+
+    // One mesh holding both parts; loops of the new part are shifted by the old part's vertex count.
+    Mesh joined = part_out;
+    const int offset = static_cast<int>(joined.vertices.size());
+    for (const Vec3& v : part_in.vertices) joined.vertices.push_back(v);
+    for (const Tri& f : part_in.faces) joined.faces.push_back(f + Tri::Constant(offset));
+    for (auto& l : loops_in)
+        for (int& v : l) v += offset;
+
+    // Pair loops greedily by mean distance.
+    struct Cand { double d; std::size_t i, j; };
+    std::vector<Cand> cands;
+    for (std::size_t i = 0; i < loops_out.size(); ++i)
+        for (std::size_t j = 0; j < loops_in.size(); ++j)
+            cands.push_back({0.5 * (loop_distance(joined.vertices, loops_out[i], loops_in[j]) +
+                                    loop_distance(joined.vertices, loops_in[j], loops_out[i])), i, j});
+    std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) {
+        return x.d < y.d || (x.d == y.d && (x.i < y.i || (x.i == y.i && x.j < y.j)));
+    });
+    std::vector<int> partner(loops_out.size(), -1);
+    std::vector<char> taken(loops_in.size(), 0);
+    for (const Cand& c : cands) {
+        if (partner[c.i] >= 0 || taken[c.j]) continue;
+        // Loops farther apart than a few edge lengths are not two sides of one cut.
+        if (c.d > 4.0 * params.metric.unit) {
+            return fail("cut loops too far apart");
+        }
+        partner[c.i] = static_cast<int>(c.j);
+        taken[c.j] = 1;
+    }
+
+    // Averaged boundary points as constraints, deformation with Eq. 5.
+    std::vector<PointConstraint> cons;
+    for (std::size_t i = 0; i < loops_out.size(); ++i) {
+        const auto& la = loops_out[i];
+        const auto& lb = loops_in[static_cast<std::size_t>(partner[i])];
+        for (int v : la) cons.push_back(PointConstraint::vertex(v, 0.5 * (joined.vertices[v] + closest_on_polyline(joined.vertices, lb, joined.vertices[v]))));
+        for (int v : lb) cons.push_back(PointConstraint::vertex(v, 0.5 * (joined.vertices[v] + closest_on_polyline(joined.vertices, la, joined.vertices[v]))));
+    }
+    joined.vertices = laplacian_deform(joined, cons, params.mu);
+
+    std::vector<int> seam;
+    for (std::size_t i = 0; i < loops_out.size(); ++i) {
+        const auto& lb = loops_in[static_cast<std::size_t>(partner[i])];
+        if (!zip_loops(joined.vertices, loops_out[i], lb, &joined.faces)) {
+            return fail("cut loops run the same way");
+        }
+        seam.insert(seam.end(), loops_out[i].begin(), loops_out[i].end());
+        seam.insert(seam.end(), lb.begin(), lb.end());
+    }
+    relax_seam(joined, seam, params.smoothing_rings, 4);
+
+    if (!is_closed_oriented(joined)) return fail("joined element not closed");
+    if (count_components(joined) != 1) return fail("joined element in pieces");
+    if (count_self_intersections(joined, 1) > 0) return fail("joined element self-intersects");
+    *result = std::move(joined);
+    return true;
+}
+
+PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewElement>& fresh, const Overlap& ov,
+                     const KernelParams& params) {
+    PatchPlan plan;
+    if (fresh.empty()) return plan;
+
+    // All new elements in one index; faces remember their element and local face.
+    Mesh all;
+    std::vector<int> elem_of_face, local_face;
+    for (std::size_t e = 0; e < fresh.size(); ++e) {
+        const int off = static_cast<int>(all.vertices.size());
+        all.vertices.insert(all.vertices.end(), fresh[e].mesh.vertices.begin(), fresh[e].mesh.vertices.end());
+        for (std::size_t f = 0; f < fresh[e].mesh.faces.size(); ++f) {
+            all.faces.push_back(fresh[e].mesh.faces[f] + Tri::Constant(off));
+            elem_of_face.push_back(static_cast<int>(e));
+            local_face.push_back(static_cast<int>(f));
+        }
+    }
+    const TriangleIndex index(all);
+
+    // Section 2.5: vertex-face pairs over the overlap, pruned; element relations.
+    struct Pair { int vertex; int face; Vec3 bary; Vec3 point; };
+    std::map<std::pair<int, int>, std::vector<Pair>> relations;  // (old index, new index) -> pairs
+    for (std::size_t o = 0; o < old.size(); ++o) {
+        const Mesh& m = old[o].mesh;
+        const std::vector<Vec3> normals = vertex_normals(m);
+        std::vector<char> used(m.vertices.size(), 0);
+        for (const Tri& f : m.faces)
+            for (int k = 0; k < 3; ++k) used[f[k]] = 1;
+        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+            if (!used[v] || !in_overlap(ov.old_side, m.vertices[v])) continue;
+            double score = 0.0;
+            const ClosestHit h = index.best_match(m.vertices[v], normals[v], params.metric, &score);
+            if (normals[v].dot(index.face_normal(h.face)) < 0.0) continue;           // opposite normals
+            if (h.distance > params.prune_factor * mean_edge(all, h.face)) continue;  // far pair
+            const int e = elem_of_face[static_cast<std::size_t>(h.face)];
+            relations[{static_cast<int>(o), e}].push_back({static_cast<int>(v), local_face[static_cast<std::size_t>(h.face)], h.bary, h.point});
+        }
+    }
+    // Projected-overlap test removes false relations; then one partner per element, strongest first.
+    struct Rel { std::size_t count; int o, e; };
+    std::vector<Rel> rels;
+    for (const auto& [key, pairs] : relations)
+        if (projections_overlap(old[static_cast<std::size_t>(key.first)].mesh, fresh[static_cast<std::size_t>(key.second)].mesh, 0.5 * params.metric.unit))
+            rels.push_back({pairs.size(), key.first, key.second});
+    std::sort(rels.begin(), rels.end(), [](const Rel& a, const Rel& b) {
+        return a.count > b.count || (a.count == b.count && (a.o < b.o || (a.o == b.o && a.e < b.e)));
+    });
+    std::vector<int> partner_of_old(old.size(), -1), partner_of_new(fresh.size(), -1);
+    for (const Rel& r : rels) {
+        if (partner_of_old[static_cast<std::size_t>(r.o)] >= 0 || partner_of_new[static_cast<std::size_t>(r.e)] >= 0) continue;
+        partner_of_old[static_cast<std::size_t>(r.o)] = r.e;
+        partner_of_new[static_cast<std::size_t>(r.e)] = r.o;
+    }
+
+    for (std::size_t o = 0; o < old.size(); ++o) {
+        const int e = partner_of_old[o];
+        if (e < 0) continue;
+        ++plan.correspondences;
+        const auto& pairs = relations[{static_cast<int>(o), e}];
+        // Section 2.6: deform both elements towards the averaged targets (Eq. 5 and Eq. 6).
+        std::vector<PointConstraint> cons_out, cons_in;
+        const Mesh& mo = old[o].mesh;
+        const Mesh& mi = fresh[static_cast<std::size_t>(e)].mesh;
+        for (const Pair& p : pairs) {
+            const Vec3 c = 0.5 * (mo.vertices[static_cast<std::size_t>(p.vertex)] + p.point);
+            cons_out.push_back(PointConstraint::vertex(p.vertex, c));
+            const Tri& f = mi.faces[static_cast<std::size_t>(p.face)];
+            cons_in.push_back({{f[0], f[1], f[2]}, p.bary, c});
+        }
+        Mesh out_d = mo, in_d = mi;
+        out_d.vertices = laplacian_deform(mo, cons_out, params.mu);
+        in_d.vertices = laplacian_deform(mi, cons_in, params.mu);
+
+        // Section 2.7: merge.
+        PatchPlan::Change ch;
+        ch.old_id = old[o].id;
+        Mesh merged;
+        std::string why;
+        StitchOutcome outcome = StitchOutcome::Stitched;
+        if (stitch_elements(out_d, in_d, ov, params, &merged, &why, &outcome)) {
+            ch.kind = outcome == StitchOutcome::UseNew    ? PatchPlan::Change::Replaced
+                      : outcome == StitchOutcome::KeepOld ? PatchPlan::Change::Deformed
+                                                          : PatchPlan::Change::Stitched;
+            ch.source = outcome == StitchOutcome::KeepOld ? -1 : fresh[static_cast<std::size_t>(e)].source;
+            ch.mesh = std::move(merged);
+        } else {
+            ++plan.stitch_failures;
+            ++plan.failure_reasons[why];
+            ch.kind = PatchPlan::Change::Deformed;
+            ch.source = -1;
+            ch.mesh = std::move(out_d);
+        }
+        plan.changes.push_back(std::move(ch));
+    }
+    for (std::size_t e = 0; e < fresh.size(); ++e) {
+        if (partner_of_new[e] >= 0) continue;
+        // An element without partner joins the output when it lies mostly on new ground; on ground
+        // already synthesised the old elements stand (adding it there would crowd a porous pattern
+        // such as chain mail or rivets, which a collision test alone does not prevent).
+        const Mesh& m = fresh[e].mesh;
+        double on_new = 0.0, total = 0.0;
+        for (std::size_t f = 0; f < m.faces.size(); ++f) {
+            const Tri& t = m.faces[f];
+            const double a = (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+            total += a;
+            if (!in_overlap(ov.new_side, centroid(m, static_cast<int>(f)))) on_new += a;
+        }
+        if (on_new < 0.5 * total) {
+            ++plan.crowding;
+            continue;
+        }
+        PatchPlan::Change ch;
+        ch.kind = PatchPlan::Change::Added;
+        ch.source = fresh[e].source;
+        ch.mesh = fresh[e].mesh;
+        plan.changes.push_back(std::move(ch));
+    }
+    return plan;
+}
+
+}  // namespace meshquilt::quilt

@@ -1,0 +1,492 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Planar mesh quilting, Zhou et al. 2006 Section 2: grids, seed finding, geometry matching, and the
+// kernel (correspondences, deformation, merging) applied patch after patch.
+
+#include "core/intersect.h"
+#include "core/triangle_index.h"
+#include "meshquilt/analysis.h"
+#include "meshquilt/errors.h"
+#include "meshquilt/quilt.h"
+#include "quilt/kernel.h"
+#include "quilt/match.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+#include <sstream>
+
+namespace meshquilt {
+
+Mesh normalize_swatch(const Mesh& swatch) {
+    const Box3 box = bounding_box(swatch);
+    const ThinAxis thin = thin_axis_of(box);
+    // Cyclic permutation (keeps orientation): the thin axis becomes z.
+    const int ax = (thin.axis + 1) % 3, ay = (thin.axis + 2) % 3, az = thin.axis;
+    Mesh out;
+    out.faces = swatch.faces;
+    out.vertices.reserve(swatch.vertices.size());
+    for (const Vec3& v : swatch.vertices)
+        out.vertices.emplace_back(v[ax] - box.min[ax], v[ay] - box.min[ay], v[az] - box.min[az]);
+    return out;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+double mesh_area(const Mesh& m) {
+    double a = 0.0;
+    for (const Tri& f : m.faces)
+        a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+    return a;
+}
+
+Vec3 area_centroid(const Mesh& m) {
+    Vec3 c = Vec3::Zero();
+    double total = 0.0;
+    for (const Tri& f : m.faces) {
+        const double a = 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+        c += a * (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0;
+        total += a;
+    }
+    return total > 0 ? Vec3(c / total) : Vec3(bounding_box(m).min);
+}
+
+Mesh translated(const Mesh& m, const Vec3& t) {
+    Mesh out = m;
+    for (Vec3& v : out.vertices) v += t;
+    return out;
+}
+
+/// The swatch split into elements, in its own frame.
+struct SwatchData {
+    Mesh mesh;
+    std::vector<Mesh> elements;
+    std::vector<char> element_closed;
+    double mean_edge = 0.0;
+    double area = 0.0;
+    Box3 box;
+};
+
+SwatchData prepare_swatch(const Mesh& input) {
+    SwatchData s;
+    s.mesh = normalize_swatch(input);
+    s.box = bounding_box(s.mesh);
+    int count = 0;
+    const std::vector<int> comp = connected_components(s.mesh, &count);
+    std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(count));
+    for (std::size_t f = 0; f < comp.size(); ++f) faces_of[static_cast<std::size_t>(comp[f])].push_back(static_cast<int>(f));
+    for (const auto& fl : faces_of) {
+        Mesh e;
+        std::map<int, int> map;
+        for (int f : fl) {
+            Tri t;
+            for (int k = 0; k < 3; ++k) {
+                const int v = s.mesh.faces[static_cast<std::size_t>(f)][k];
+                auto it = map.find(v);
+                if (it == map.end()) {
+                    it = map.emplace(v, static_cast<int>(e.vertices.size())).first;
+                    e.vertices.push_back(s.mesh.vertices[static_cast<std::size_t>(v)]);
+                }
+                t[k] = it->second;
+            }
+            e.faces.push_back(t);
+        }
+        s.element_closed.push_back(quilt::is_closed_oriented(e));
+        s.elements.push_back(std::move(e));
+    }
+    double len = 0.0;
+    for (const Tri& f : s.mesh.faces)
+        for (int k = 0; k < 3; ++k) len += (s.mesh.vertices[f[k]] - s.mesh.vertices[f[(k + 1) % 3]]).norm();
+    s.mean_edge = len / (3.0 * static_cast<double>(std::max<std::size_t>(1, s.mesh.faces.size())));
+    s.area = mesh_area(s.mesh);
+    return s;
+}
+
+/// Output grid with a margin of cells around the footprint, so that placements near the border
+/// keep track of what they cover.
+struct Grid {
+    int nx = 0, ny = 0;          ///< footprint cells
+    int margin_x = 0, margin_y = 0;
+    double cell = 1.0;
+    std::vector<char> processed;
+    std::vector<int> occupied;   ///< number of alive element triangles touching the cell
+    std::vector<std::vector<int>> bucket;  ///< element ids whose triangles touch the cell
+
+    void init(int nx_, int ny_, int mx, int my, double c) {
+        nx = nx_;
+        ny = ny_;
+        margin_x = mx;
+        margin_y = my;
+        cell = c;
+        const std::size_t n = static_cast<std::size_t>(width()) * static_cast<std::size_t>(height());
+        processed.assign(n, 0);
+        occupied.assign(n, 0);
+        bucket.assign(n, {});
+    }
+    [[nodiscard]] int width() const { return nx + 2 * margin_x; }
+    [[nodiscard]] int height() const { return ny + 2 * margin_y; }
+    /// Cell coordinates are relative to the footprint origin: footprint cells are [0, nx) x [0, ny).
+    [[nodiscard]] bool valid(int i, int j) const { return i >= -margin_x && i < nx + margin_x && j >= -margin_y && j < ny + margin_y; }
+    [[nodiscard]] std::size_t at(int i, int j) const {
+        return static_cast<std::size_t>(j + margin_y) * static_cast<std::size_t>(width()) + static_cast<std::size_t>(i + margin_x);
+    }
+    [[nodiscard]] int cell_of(double x) const { return static_cast<int>(std::floor(x / cell)); }
+};
+
+struct OutputElement {
+    Mesh mesh;
+    int source = -1;
+    bool alive = false;
+    int collider_id = -1;
+    std::vector<std::size_t> cells;  ///< grid cells its triangles touch (with multiplicity per triangle)
+};
+
+class PlanarQuilter {
+public:
+    PlanarQuilter(const Mesh& swatch, const PlanarQuiltOptions& o) : opt_(o) {
+        validate_options();
+        auto t0 = Clock::now();
+        sw_ = prepare_swatch(swatch);
+        const ThinAxis thin = thin_axis_of(bounding_box(swatch));
+        if (!thin.is_thin)
+            throw InvalidInput("swatch has no thin axis: its smallest extent is more than half the middle one; a swatch must be a slab");
+        index_ = TriangleIndex(sw_.mesh);
+        const double lx = sw_.box.max.x(), ly = sw_.box.max.y();
+        cell_ = opt_.cell_size > 0 ? opt_.cell_size : std::max(lx, ly) / 24.0;
+        sx_ = static_cast<int>(std::floor(lx / cell_ + 1e-9));
+        sy_ = static_cast<int>(std::floor(ly / cell_ + 1e-9));
+        if (sx_ < 2 || sy_ < 2)
+            throw InvalidInput("cell size " + std::to_string(cell_) + " is too large for the swatch footprint (" + std::to_string(lx) + " x " +
+                               std::to_string(ly) + "): the swatch must span at least 2 cells each way");
+        k_ = opt_.subpatch_cells > 0 ? opt_.subpatch_cells : std::max(2, static_cast<int>(std::lround(std::min(sx_, sy_) / 3.0)));
+        k_ = std::min({k_, sx_, sy_});
+        const int nx = static_cast<int>(std::ceil(opt_.width / cell_ - 1e-9));
+        const int ny = static_cast<int>(std::ceil(opt_.height / cell_ - 1e-9));
+        const double cells = static_cast<double>(nx) * ny;
+        if (cells > 4.0e6)
+            throw InvalidInput("output of " + std::to_string(opt_.width) + " x " + std::to_string(opt_.height) + " needs " +
+                               std::to_string(static_cast<long long>(cells)) + " grid cells of size " + std::to_string(cell_) +
+                               " (limit 4,000,000): choose a smaller output or a larger --cell");
+        grid_.init(nx, ny, sx_, sy_, cell_);
+        params_.metric.lambda = opt_.lambda;
+        params_.metric.unit = sw_.mean_edge;
+        params_.mu = opt_.mu;
+        rng_.seed(opt_.seed);
+        stage_seconds_["prepare"] += seconds_since(t0);
+    }
+
+    QuiltResult run() {
+        QuiltResult result;
+        const int total = grid_.nx * grid_.ny;
+        int done = 0;
+        const int max_steps = 8 * total + 16;
+        for (int step = 0; step < max_steps && done < total; ++step) {
+            const auto [si, sj] = find_seed();
+            place_patch(si, sj);
+            done = count_processed();
+            opt_.reporter.report("quilting", static_cast<double>(done) / total);
+        }
+        if (done < total) throw meshquilt::Error(ErrorCode::Internal, "planar quilting did not cover the output grid");
+        finish(result);
+        return result;
+    }
+
+private:
+    void validate_options() const {
+        auto bad = [](double v) { return !std::isfinite(v) || v <= 0.0; };
+        if (bad(opt_.width) || bad(opt_.height))
+            throw InvalidInput("output size must be positive and finite (got " + std::to_string(opt_.width) + " x " + std::to_string(opt_.height) + ")");
+        if (!std::isfinite(opt_.cell_size)) throw InvalidInput("cell size must be finite");
+        if (bad(opt_.lambda)) throw InvalidInput("lambda must be positive");
+        if (bad(opt_.mu)) throw InvalidInput("mu must be positive");
+        if (!std::isfinite(opt_.tolerance) || opt_.tolerance < 0) throw InvalidInput("tolerance must be >= 0");
+    }
+
+    int count_processed() const {
+        int n = 0;
+        for (int j = 0; j < grid_.ny; ++j)
+            for (int i = 0; i < grid_.nx; ++i) n += grid_.processed[grid_.at(i, j)];
+        return n;
+    }
+
+    /// Section 2.3: the unprocessed footprint cell with the most processed neighbours (8-neighbourhood);
+    /// ties are broken at random (from the seed), the very first seed is random.
+    std::pair<int, int> find_seed() {
+        int best = -1;
+        std::vector<std::pair<int, int>> ties;
+        for (int j = 0; j < grid_.ny; ++j)
+            for (int i = 0; i < grid_.nx; ++i) {
+                if (grid_.processed[grid_.at(i, j)]) continue;
+                int n = 0;
+                for (int dj = -1; dj <= 1; ++dj)
+                    for (int di = -1; di <= 1; ++di)
+                        if ((di || dj) && grid_.valid(i + di, j + dj)) n += grid_.processed[grid_.at(i + di, j + dj)];
+                if (n > best) {
+                    best = n;
+                    ties.clear();
+                }
+                if (n == best) ties.emplace_back(i, j);
+            }
+        std::uniform_int_distribution<std::size_t> pick(0, ties.size() - 1);
+        return ties[pick(rng_)];
+    }
+
+    std::vector<int> elements_in_rect(double x0, double y0, double x1, double y1) const {
+        std::vector<int> ids;
+        const int i0 = grid_.cell_of(x0), i1 = grid_.cell_of(x1), j0 = grid_.cell_of(y0), j1 = grid_.cell_of(y1);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+                if (grid_.valid(i, j))
+                    for (int id : grid_.bucket[grid_.at(i, j)])
+                        if (elems_[static_cast<std::size_t>(id)].alive) ids.push_back(id);
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        return ids;
+    }
+
+    void place_patch(int si, int sj) {
+        auto t0 = Clock::now();
+        // P_out: k x k cells around the seed.
+        const int pi0 = si - k_ / 2, pj0 = sj - k_ / 2;
+        const double px0 = pi0 * cell_, py0 = pj0 * cell_, px1 = (pi0 + k_) * cell_, py1 = (pj0 + k_) * cell_;
+        std::vector<quilt::Sample> samples;
+        for (int id : elements_in_rect(px0, py0, px1, py1)) {
+            const Mesh& m = elems_[static_cast<std::size_t>(id)].mesh;
+            const std::vector<Vec3> n = vertex_normals(m);
+            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                const Vec3& p = m.vertices[v];
+                if (p.x() >= px0 && p.x() < px1 && p.y() >= py0 && p.y() < py1) samples.push_back({p, n[v]});
+            }
+        }
+        // Whole-cell translations that cover P_out completely (Section 2.4).
+        std::vector<Vec2> cands;
+        for (int tj = pj0 + k_ - sy_; tj <= pj0; ++tj)
+            for (int ti = pi0 + k_ - sx_; ti <= pi0; ++ti) cands.emplace_back(ti * cell_, tj * cell_);
+        const quilt::MatchChoice choice = quilt::choose_translation(index_, params_.metric, samples, cands, opt_.tolerance, rng_);
+        const int ti = static_cast<int>(std::lround(choice.translation.x() / cell_));
+        const int tj = static_cast<int>(std::lround(choice.translation.y() / cell_));
+        ++phase_count_[{((ti % sx_) + sx_) % sx_, ((tj % sy_) + sy_) % sy_}];
+        stage_seconds_["matching"] += seconds_since(t0);
+        t0 = Clock::now();
+
+        // The placed patch and the overlapping region.
+        const Vec3 shift(choice.translation.x(), choice.translation.y(), 0.0);
+        const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
+        std::vector<quilt::NewElement> fresh;
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
+            const Vec3 c = area_centroid(sw_.elements[e]);
+            if (c.x() < 0 || c.y() < 0 || c.x() >= sx_ * cell_ || c.y() >= sy_ * cell_) continue;
+            fresh.push_back({static_cast<int>(e), translated(sw_.elements[e], shift)});
+        }
+        const Grid& g = grid_;
+        quilt::Overlap overlap;
+        overlap.old_side = [fx0, fy0, fx1, fy1](double x, double y) { return x >= fx0 && x < fx1 && y >= fy0 && y < fy1; };
+        overlap.new_side = [&g](double x, double y) {
+            const int i = g.cell_of(x), j = g.cell_of(y);
+            if (!g.valid(i, j)) return false;
+            const std::size_t c = g.at(i, j);
+            return g.processed[c] != 0 || g.occupied[c] > 0;
+        };
+        std::vector<quilt::OldElement> old;
+        std::vector<int> old_ids = elements_in_rect(fx0, fy0, fx1, fy1);
+        for (int id : old_ids) old.push_back({id, elems_[static_cast<std::size_t>(id)].mesh});
+        const quilt::PatchPlan plan = quilt::plan_patch(old, fresh, overlap, params_);
+        stage_seconds_["merging"] += seconds_since(t0);
+        t0 = Clock::now();
+
+        report_.stitch_failures += plan.stitch_failures;
+        for (const auto& [why, n] : plan.failure_reasons) failure_reasons_[why] += n;
+        apply(plan);
+        for (int j = tj; j < tj + sy_; ++j)
+            for (int i = ti; i < ti + sx_; ++i)
+                if (grid_.valid(i, j)) grid_.processed[grid_.at(i, j)] = 1;
+        ++report_.patches;
+        stage_seconds_["collisions"] += seconds_since(t0);
+    }
+
+    /// Applies a plan. Each change replaces its old element only if the result collides with nothing
+    /// else; the old element stays otherwise. Refused changes are retried after the others (a new
+    /// weave thread may cross an old thread that the same plan replaces), until no more go in.
+    void apply(const quilt::PatchPlan& plan) {
+        using Kind = quilt::PatchPlan::Change::Kind;
+        std::vector<const quilt::PatchPlan::Change*> pending;
+        for (const auto& ch : plan.changes) pending.push_back(&ch);
+        for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
+            std::vector<const quilt::PatchPlan::Change*> refused;
+            for (const auto* ch : pending) {
+                std::vector<int> ignore;
+                if (ch->old_id >= 0) ignore.push_back(elems_[static_cast<std::size_t>(ch->old_id)].collider_id);
+                if (collider_.collides(ch->mesh, ignore)) {
+                    refused.push_back(ch);
+                    continue;
+                }
+                if (ch->kind == Kind::Added) {
+                    add_element(ch->mesh, ch->source);
+                    continue;
+                }
+                const int source = ch->source >= 0 ? ch->source : elems_[static_cast<std::size_t>(ch->old_id)].source;
+                remove_element(ch->old_id);
+                add_element(ch->mesh, source);
+                if (ch->kind == Kind::Stitched) ++report_.elements_stitched;
+                if (ch->kind == Kind::Replaced) ++report_.elements_replaced;
+            }
+            if (refused.size() == pending.size()) break;
+            pending = std::move(refused);
+        }
+        for (const auto* ch : pending) {
+            if (ch->kind == Kind::Stitched) ++report_.stitch_failures;
+            else if (ch->kind != Kind::Deformed) ++report_.collisions_avoided;
+        }
+    }
+
+    void add_element(const Mesh& mesh, int source) {
+        OutputElement e;
+        e.mesh = mesh;
+        e.source = source;
+        e.alive = true;
+        e.collider_id = collider_.add(mesh);
+        const int id = static_cast<int>(elems_.size());
+        for (const Tri& f : mesh.faces) {
+            const Vec3& a = mesh.vertices[f[0]];
+            const Vec3& b = mesh.vertices[f[1]];
+            const Vec3& c = mesh.vertices[f[2]];
+            const int i0 = grid_.cell_of(std::min({a.x(), b.x(), c.x()})), i1 = grid_.cell_of(std::max({a.x(), b.x(), c.x()}));
+            const int j0 = grid_.cell_of(std::min({a.y(), b.y(), c.y()})), j1 = grid_.cell_of(std::max({a.y(), b.y(), c.y()}));
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                    if (grid_.valid(i, j)) e.cells.push_back(grid_.at(i, j));
+        }
+        std::vector<std::size_t> unique_cells = e.cells;
+        std::sort(unique_cells.begin(), unique_cells.end());
+        unique_cells.erase(std::unique(unique_cells.begin(), unique_cells.end()), unique_cells.end());
+        for (std::size_t c : e.cells) ++grid_.occupied[c];
+        for (std::size_t c : unique_cells) grid_.bucket[c].push_back(id);
+        elems_.push_back(std::move(e));
+    }
+
+    void remove_element(int id) {
+        OutputElement& e = elems_[static_cast<std::size_t>(id)];
+        if (!e.alive) return;
+        e.alive = false;
+        collider_.remove(e.collider_id);
+        for (std::size_t c : e.cells) --grid_.occupied[c];
+        std::vector<std::size_t> unique_cells = e.cells;
+        std::sort(unique_cells.begin(), unique_cells.end());
+        unique_cells.erase(std::unique(unique_cells.begin(), unique_cells.end()), unique_cells.end());
+        for (std::size_t c : unique_cells) {
+            auto& b = grid_.bucket[c];
+            b.erase(std::remove(b.begin(), b.end(), id), b.end());
+        }
+        e.mesh = Mesh();
+    }
+
+    void finish(QuiltResult& result) {
+        auto t0 = Clock::now();
+        // Keep elements whose centroid lies in the footprint; remove those that are not whole.
+        std::vector<int> kept;
+        for (std::size_t id = 0; id < elems_.size(); ++id) {
+            OutputElement& e = elems_[id];
+            if (!e.alive) continue;
+            const Vec3 c = area_centroid(e.mesh);
+            if (c.x() < 0 || c.y() < 0 || c.x() >= opt_.width || c.y() >= opt_.height) continue;
+            const bool source_closed = e.source >= 0 && sw_.element_closed[static_cast<std::size_t>(e.source)];
+            if (source_closed && !quilt::is_closed_oriented(e.mesh)) {
+                ++report_.elements_removed;
+                continue;
+            }
+            kept.push_back(static_cast<int>(id));
+        }
+        // Elements that still intersect another (the swatch's own did not) are removed, smaller first.
+        Mesh all;
+        std::vector<int> eof;
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+            const Mesh& m = elems_[static_cast<std::size_t>(kept[k])].mesh;
+            const int off = static_cast<int>(all.vertices.size());
+            all.vertices.insert(all.vertices.end(), m.vertices.begin(), m.vertices.end());
+            for (const Tri& f : m.faces) {
+                all.faces.push_back(f + Tri::Constant(off));
+                eof.push_back(static_cast<int>(k));
+            }
+        }
+        std::vector<char> drop(kept.size(), 0);
+        if (swatch_elements_disjoint()) {
+            for (const auto& [a, b] : intersecting_element_pairs(all, eof)) {
+                if (drop[static_cast<std::size_t>(a)] || drop[static_cast<std::size_t>(b)]) continue;
+                const std::size_t fa = elems_[static_cast<std::size_t>(kept[static_cast<std::size_t>(a)])].mesh.faces.size();
+                const std::size_t fb = elems_[static_cast<std::size_t>(kept[static_cast<std::size_t>(b)])].mesh.faces.size();
+                drop[static_cast<std::size_t>(fa < fb ? a : b)] = 1;
+                ++report_.elements_removed;
+            }
+        }
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+            if (drop[k]) continue;
+            const OutputElement& e = elems_[static_cast<std::size_t>(kept[k])];
+            const int off = static_cast<int>(result.mesh.vertices.size());
+            const int eid = static_cast<int>(result.source_element.size());
+            result.mesh.vertices.insert(result.mesh.vertices.end(), e.mesh.vertices.begin(), e.mesh.vertices.end());
+            for (const Tri& f : e.mesh.faces) {
+                result.mesh.faces.push_back(f + Tri::Constant(off));
+                result.element_of_face.push_back(eid);
+            }
+            result.source_element.push_back(e.source);
+            if (quilt::is_closed_oriented(e.mesh)) ++report_.elements_closed;
+        }
+        stage_seconds_["finish"] += seconds_since(t0);
+        for (const auto& [why, n] : failure_reasons_) opt_.reporter.debug("stitch failed " + std::to_string(n) + " times: " + why);
+
+        QualityReport& r = report_;
+        r.faces = static_cast<int>(result.mesh.faces.size());
+        r.vertices = static_cast<int>(result.mesh.vertices.size());
+        r.elements = static_cast<int>(result.source_element.size());
+        r.cell_size = cell_;
+        r.swatch_density = sw_.area / (sw_.box.size().x() * sw_.box.size().y());
+        r.output_density = mesh_area(result.mesh) / (opt_.width * opt_.height);
+        for (const auto& [phase, n] : phase_count_) r.largest_translation_share = std::max(r.largest_translation_share, n);
+        for (const auto& [stage, s] : stage_seconds_) r.seconds.emplace_back(stage, s);
+        result.report = r;
+        if (r.elements_removed > 0)
+            result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
+    }
+
+    bool swatch_elements_disjoint() {
+        if (!disjoint_known_) {
+            std::vector<int> eof;
+            int n = 0;
+            eof = connected_components(sw_.mesh, &n);
+            swatch_disjoint_ = intersecting_element_pairs(sw_.mesh, eof, 1).empty();
+            disjoint_known_ = true;
+        }
+        return swatch_disjoint_;
+    }
+
+    PlanarQuiltOptions opt_;
+    SwatchData sw_;
+    TriangleIndex index_;
+    quilt::KernelParams params_;
+    double cell_ = 1.0;
+    int sx_ = 0, sy_ = 0, k_ = 0;
+    Grid grid_;
+    std::vector<OutputElement> elems_;
+    ElementCollider collider_;
+    std::mt19937_64 rng_;
+    QualityReport report_;
+    std::map<std::pair<int, int>, int> phase_count_;
+    std::map<std::string, double> stage_seconds_;
+    std::map<std::string, int> failure_reasons_;
+    bool disjoint_known_ = false, swatch_disjoint_ = true;
+};
+
+}  // namespace
+
+QuiltResult quilt_plane(const Mesh& swatch, const PlanarQuiltOptions& options) {
+    if (swatch.faces.empty()) throw InvalidInput("swatch has no faces");
+    PlanarQuilter q(swatch, options);
+    return q.run();
+}
+
+}  // namespace meshquilt

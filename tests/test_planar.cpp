@@ -1,0 +1,249 @@
+// labels: property e2e
+// Acceptance properties of planar mesh quilting (issue 2), for every bundled swatch and three seeds,
+// on an output of 4 x 4 swatch footprints.
+
+#include "meshquilt/analysis.h"
+#include "meshquilt/errors.h"
+#include "meshquilt/io.h"
+#include "meshquilt/quilt.h"
+#include "support/checkers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace mq = meshquilt;
+using mq::Mesh;
+using mq::Vec3;
+
+namespace {
+
+std::string swatch_path(const std::string& name) { return std::string(MQ_SWATCH_DIR) + "/" + name + ".obj"; }
+
+double area(const Mesh& m) {
+    double a = 0.0;
+    for (const auto& f : m.faces) a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+    return a;
+}
+
+/// Area-weighted centroid of the surface (the library keeps an element when this lies in the footprint).
+Vec3 centroid(const Mesh& m) {
+    Vec3 c = Vec3::Zero();
+    double total = 0.0;
+    for (const auto& f : m.faces) {
+        const double a = 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+        c += a * (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0;
+        total += a;
+    }
+    return total > 0 ? Vec3(c / total) : Vec3::Zero();
+}
+
+struct QuiltRun {
+    Mesh swatch;  // normalised
+    mq::QuiltResult result;
+    double width = 0, height = 0;
+};
+
+QuiltRun quilt(const std::string& name, std::uint64_t seed) {
+    QuiltRun r;
+    r.swatch = mq::normalize_swatch(mq::read_mesh(swatch_path(name)));
+    const mq::Box3 box = mq::bounding_box(r.swatch);
+    r.width = 4.0 * box.size().x();
+    r.height = 4.0 * box.size().y();
+    mq::PlanarQuiltOptions o;
+    o.width = r.width;
+    o.height = r.height;
+    o.seed = seed;
+    r.result = mq::quilt_plane(r.swatch, o);
+    return r;
+}
+
+class PlanarQuilt : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
+
+TEST_P(PlanarQuilt, ElementsWholeDisjointAndVaried) {
+    const auto& [name, seed] = GetParam();
+    ASSERT_TRUE(std::filesystem::exists(swatch_path(name))) << swatch_path(name);
+    const QuiltRun run = quilt(name, static_cast<std::uint64_t>(seed));
+    const mq::QuiltResult& r = run.result;
+    const mq::QualityReport& q = r.report;
+    ASSERT_GT(q.elements, 0);
+    ASSERT_EQ(r.element_of_face.size(), r.mesh.faces.size());
+
+    // Integrity: every element closed and edge-manifold (the swatch's are); no boundary edge anywhere.
+    EXPECT_TRUE(mq::test::elements_closed(r.mesh, r.element_of_face));
+    EXPECT_EQ(q.elements_closed, q.elements);
+    const mq::MeshAnalysis a = mq::analyse(r.mesh);
+    EXPECT_EQ(a.boundary_edges, 0);
+    EXPECT_EQ(a.non_manifold_edges, 0);
+
+    // No two output elements intersect (the swatch's elements do not).
+    EXPECT_TRUE(mq::test::no_element_intersections(r.mesh, r.element_of_face));
+
+    // Few elements removed as unfixable.
+    EXPECT_LE(q.elements_removed, std::max(1.0, 0.02 * (q.elements + q.elements_removed))) << q.elements_removed << " removed";
+
+    // Not periodic: fewer than half of the placed patches share one translation.
+    EXPECT_GE(q.patches, 4);
+    EXPECT_LT(2 * q.largest_translation_share, q.patches) << q.largest_translation_share << " of " << q.patches;
+
+    // The output covers the footprint: element centroids spread over all four quadrants.
+    int quadrant[4] = {0, 0, 0, 0};
+    for (const Mesh& e : mq::test::split_elements(r.mesh, r.element_of_face)) {
+        const Vec3 c = centroid(e);
+        ASSERT_GE(c.x(), 0.0);
+        ASSERT_GE(c.y(), 0.0);
+        ASSERT_LT(c.x(), run.width);
+        ASSERT_LT(c.y(), run.height);
+        ++quadrant[(c.x() < run.width / 2 ? 0 : 1) + (c.y() < run.height / 2 ? 0 : 2)];
+    }
+    for (int k = 0; k < 4; ++k) EXPECT_GT(quadrant[k], q.elements / 8) << "quadrant " << k;
+}
+
+// Issue 2 acceptance criteria that the current kernel does not meet yet (see docs/planar.md):
+// element density within 10% of the swatch's and no sparse region. Kept here, disabled, so that
+// `--gtest_also_run_disabled_tests` measures them; enable once they pass.
+TEST_P(PlanarQuilt, DISABLED_DensityMatchesSwatch) {
+    const auto& [name, seed] = GetParam();
+    const QuiltRun run = quilt(name, static_cast<std::uint64_t>(seed));
+    const mq::QuiltResult& r = run.result;
+    const mq::Box3 sbox = mq::bounding_box(run.swatch);
+    const double swatch_density = area(run.swatch) / (sbox.size().x() * sbox.size().y());
+    const double out_density = area(r.mesh) / (run.width * run.height);
+    EXPECT_NEAR(out_density / swatch_density, 1.0, 0.10) << "swatch " << swatch_density << " output " << out_density;
+
+    // No empty region: every block of half a swatch footprint holds a fair share of geometry.
+    const double bx = sbox.size().x() / 2, by = sbox.size().y() / 2;
+    const int nbx = static_cast<int>(run.width / bx), nby = static_cast<int>(run.height / by);
+    std::vector<double> block(static_cast<std::size_t>(nbx * nby), 0.0);
+    for (const auto& f : r.mesh.faces) {
+        const Vec3 c = (r.mesh.vertices[f[0]] + r.mesh.vertices[f[1]] + r.mesh.vertices[f[2]]) / 3.0;
+        const int i = static_cast<int>(c.x() / bx), j = static_cast<int>(c.y() / by);
+        if (i < 0 || j < 0 || i >= nbx || j >= nby) continue;
+        block[static_cast<std::size_t>(j * nbx + i)] +=
+            0.5 * (r.mesh.vertices[f[1]] - r.mesh.vertices[f[0]]).cross(r.mesh.vertices[f[2]] - r.mesh.vertices[f[0]]).norm();
+    }
+    for (int j = 0; j < nby; ++j)
+        for (int i = 0; i < nbx; ++i)
+            EXPECT_GT(block[static_cast<std::size_t>(j * nbx + i)], 0.4 * swatch_density * bx * by) << "sparse block " << i << "," << j;
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledSwatches, PlanarQuilt,
+                         ::testing::Combine(::testing::Values("weave", "chainmail", "pebbles", "rivets", "cobbles"),
+                                            ::testing::Values(1, 2, 3)),
+                         [](const auto& info) { return std::get<0>(info.param) + "_seed" + std::to_string(std::get<1>(info.param)); });
+
+// Long elements continue across patches: the weave's output threads are longer than the swatch.
+// Not met yet (issue 2): see docs/planar.md.
+TEST(PlanarQuiltWeave, DISABLED_ThreadsAreStitchedAcrossPatches) {
+    const QuiltRun run = quilt("weave", 7);
+    const mq::Box3 sbox = mq::bounding_box(run.swatch);
+    const double swatch_len = std::max(sbox.size().x(), sbox.size().y());
+    int longer = 0;
+    for (const Mesh& e : mq::test::split_elements(run.result.mesh, run.result.element_of_face)) {
+        const mq::Box3 b = mq::bounding_box(e);
+        if (std::max(b.size().x(), b.size().y()) > 1.5 * swatch_len) ++longer;
+    }
+    EXPECT_GT(run.result.report.elements_stitched, 0);
+    // Threads run both ways across a 4 x 4 output: most of them should be longer than 1.5 swatches.
+    EXPECT_GE(longer, 8) << "threads longer than 1.5 swatch lengths";
+}
+
+// Chain mail stays chain mail: away from the border every ring interlocks with as many rings as the
+// interior rings of the swatch do (Gauss linking numbers of the ring centre lines).
+std::map<int, int> link_counts(const std::vector<Mesh>& rings, double diameter) {
+    std::vector<std::vector<Vec3>> lines;
+    std::vector<Vec3> centres;
+    for (const Mesh& r : rings) {
+        lines.push_back(mq::test::ring_centerline(r));
+        centres.push_back(centroid(r));
+    }
+    std::map<int, int> count;
+    for (std::size_t i = 0; i < rings.size(); ++i)
+        for (std::size_t j = i + 1; j < rings.size(); ++j) {
+            if ((centres[i] - centres[j]).norm() > 1.5 * diameter) continue;
+            if (std::lround(std::abs(mq::test::linking_number(lines[i], lines[j]))) == 1) {
+                ++count[static_cast<int>(i)];
+                ++count[static_cast<int>(j)];
+            }
+        }
+    return count;
+}
+
+// Not met yet (issue 2): see docs/planar.md.
+TEST(PlanarQuiltChainmail, DISABLED_RingsKeepInterlocking) {
+    const QuiltRun run = quilt("chainmail", 11);
+    int n = 0;
+    const std::vector<int> comp = mq::connected_components(run.swatch, &n);
+    const std::vector<Mesh> swatch_rings = mq::test::split_elements(run.swatch, comp);
+    double diameter = 0.0;
+    for (const Mesh& r : swatch_rings) {
+        const mq::Box3 b = mq::bounding_box(r);
+        diameter = std::max({diameter, b.size().x(), b.size().y()});
+    }
+    const mq::Box3 sbox = mq::bounding_box(run.swatch);
+    auto interior = [&](const Mesh& r, double w, double h) {
+        const Vec3 c = centroid(r);
+        return c.x() > 1.5 * diameter && c.y() > 1.5 * diameter && c.x() < w - 1.5 * diameter && c.y() < h - 1.5 * diameter;
+    };
+    const auto swatch_links = link_counts(swatch_rings, diameter);
+    int expected = -1;
+    for (std::size_t i = 0; i < swatch_rings.size(); ++i) {
+        if (!interior(swatch_rings[i], sbox.size().x(), sbox.size().y())) continue;
+        const int c = swatch_links.count(static_cast<int>(i)) ? swatch_links.at(static_cast<int>(i)) : 0;
+        if (expected < 0) expected = c;
+        ASSERT_EQ(c, expected) << "swatch rings differ in how many rings they interlock with";
+    }
+    ASSERT_GT(expected, 0) << "the chain-mail swatch has no interior ring";
+
+    const std::vector<Mesh> rings = mq::test::split_elements(run.result.mesh, run.result.element_of_face);
+    const auto links = link_counts(rings, diameter);
+    int interior_rings = 0, wrong = 0;
+    for (std::size_t i = 0; i < rings.size(); ++i) {
+        if (!interior(rings[i], run.width, run.height)) continue;
+        ++interior_rings;
+        const int c = links.count(static_cast<int>(i)) ? links.at(static_cast<int>(i)) : 0;
+        if (c != expected) {
+            ++wrong;
+            if (wrong <= 5) ADD_FAILURE() << "ring " << i << " at " << centroid(rings[i]).transpose() << " interlocks with " << c << " rings, expected " << expected;
+        }
+    }
+    EXPECT_GT(interior_rings, 20);
+    EXPECT_EQ(wrong, 0) << "of " << interior_rings << " interior rings";
+}
+
+// Same inputs and seed: identical output; another seed: a different one.
+TEST(PlanarQuiltDeterminism, SameSeedSameMesh) {
+    const QuiltRun a = quilt("pebbles", 5), b = quilt("pebbles", 5), c = quilt("pebbles", 6);
+    EXPECT_EQ(a.result.mesh.vertices, b.result.mesh.vertices);
+    EXPECT_EQ(a.result.mesh.faces, b.result.mesh.faces);
+    EXPECT_EQ(a.result.element_of_face, b.result.element_of_face);
+    EXPECT_NE(a.result.mesh.vertices, c.result.mesh.vertices);
+}
+
+TEST(PlanarQuiltErrors, RejectsBadOptions) {
+    const Mesh swatch = mq::read_mesh(swatch_path("pebbles"));
+    mq::PlanarQuiltOptions o;
+    o.width = -1;
+    o.height = 10;
+    EXPECT_THROW(mq::quilt_plane(swatch, o), mq::InvalidInput);
+    o.width = std::nan("");
+    EXPECT_THROW(mq::quilt_plane(swatch, o), mq::InvalidInput);
+    o.width = 1e9;
+    o.height = 1e9;
+    try {
+        mq::quilt_plane(swatch, o);
+        FAIL() << "an absurd output size must be rejected before any work";
+    } catch (const mq::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("grid cells"), std::string::npos) << e.what();
+    }
+    o.width = o.height = 10;
+    o.cell_size = 1e6;
+    EXPECT_THROW(mq::quilt_plane(swatch, o), mq::InvalidInput);
+    EXPECT_THROW(mq::quilt_plane(Mesh{}, o), mq::InvalidInput);
+}
+
+}  // namespace
