@@ -42,6 +42,16 @@ Vec3 centroid(const Mesh& m) {
     return total > 0 ? Vec3(c / total) : Vec3::Zero();
 }
 
+double window_density(const Mesh& m, double x0, double y0, double x1, double y1) {
+    double a = 0.0;
+    for (const auto& f : m.faces) {
+        const Vec3 c = (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0;
+        if (c.x() >= x0 && c.x() <= x1 && c.y() >= y0 && c.y() <= y1)
+            a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+    }
+    return a / ((x1 - x0) * (y1 - y0));
+}
+
 struct QuiltRun {
     Mesh swatch;  // normalised
     mq::QuiltResult result;
@@ -103,16 +113,20 @@ TEST_P(PlanarQuilt, ElementsWholeDisjointAndVaried) {
     for (int k = 0; k < 4; ++k) EXPECT_GT(quadrant[k], q.elements / 8) << "quadrant " << k;
 }
 
-// Issue 2 acceptance criteria that the current kernel does not meet yet (see docs/planar.md):
-// element density within 10% of the swatch's and no sparse region. Kept here, disabled, so that
-// `--gtest_also_run_disabled_tests` measures them; enable once they pass.
-TEST_P(PlanarQuilt, DISABLED_DensityMatchesSwatch) {
+// Element density within 10% of the swatch's, and no sparse region. Met for compact elements
+// (pebbles, rivets); not yet for long threads, chain mail and tessellations (see docs/planar.md):
+// those run with --gtest_also_run_disabled_tests until they pass.
+class PlanarDensity : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
+
+TEST_P(PlanarDensity, DensityMatchesSwatch) {
     const auto& [name, seed] = GetParam();
     const QuiltRun run = quilt(name, static_cast<std::uint64_t>(seed));
     const mq::QuiltResult& r = run.result;
+    // Both densities over windows inset from the borders (a swatch's margins are ragged).
     const mq::Box3 sbox = mq::bounding_box(run.swatch);
-    const double swatch_density = area(run.swatch) / (sbox.size().x() * sbox.size().y());
-    const double out_density = area(r.mesh) / (run.width * run.height);
+    const double mx = 0.15 * sbox.size().x(), my = 0.15 * sbox.size().y();
+    const double swatch_density = window_density(run.swatch, mx, my, sbox.size().x() - mx, sbox.size().y() - my);
+    const double out_density = window_density(r.mesh, mx, my, run.width - mx, run.height - my);
     EXPECT_NEAR(out_density / swatch_density, 1.0, 0.10) << "swatch " << swatch_density << " output " << out_density;
 
     // No empty region: every block of half a swatch footprint holds a fair share of geometry.
@@ -131,10 +145,16 @@ TEST_P(PlanarQuilt, DISABLED_DensityMatchesSwatch) {
             EXPECT_GT(block[static_cast<std::size_t>(j * nbx + i)], 0.4 * swatch_density * bx * by) << "sparse block " << i << "," << j;
 }
 
+auto param_name = [](const auto& info) { return std::get<0>(info.param) + "_seed" + std::to_string(std::get<1>(info.param)); };
+INSTANTIATE_TEST_SUITE_P(CompactElements, PlanarDensity,
+                         ::testing::Combine(::testing::Values("pebbles", "rivets"), ::testing::Values(1, 2, 3)), param_name);
+INSTANTIATE_TEST_SUITE_P(DISABLED_NotYetMet, PlanarDensity,
+                         ::testing::Combine(::testing::Values("weave", "chainmail", "cobbles"), ::testing::Values(1, 2, 3)), param_name);
+
 INSTANTIATE_TEST_SUITE_P(BundledSwatches, PlanarQuilt,
                          ::testing::Combine(::testing::Values("weave", "chainmail", "pebbles", "rivets", "cobbles"),
                                             ::testing::Values(1, 2, 3)),
-                         [](const auto& info) { return std::get<0>(info.param) + "_seed" + std::to_string(std::get<1>(info.param)); });
+                         param_name);
 
 // Long elements continue across patches: the weave's output threads are longer than the swatch.
 // Not met yet (issue 2): see docs/planar.md.

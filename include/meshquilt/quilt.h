@@ -27,8 +27,10 @@ struct QualityReport {
     int stitch_failures = 0;      ///< stitches that could not be made; the old element was kept
     int collisions_avoided = 0;   ///< new elements not added because they would intersect the output
     double cell_size = 0.0;
-    double swatch_density = 0.0;  ///< swatch element area per unit footprint area
-    double output_density = 0.0;  ///< output element area per unit footprint area
+    /// Element area per unit footprint area, counted by face centroid in a window inset by 15% of the
+    /// swatch's sides from the border (of the swatch, and of the output), so both use one estimator.
+    double swatch_density = 0.0;
+    double output_density = 0.0;
     int largest_translation_share = 0;  ///< placements sharing the most common translation (mod the swatch grid)
     std::vector<std::pair<std::string, double>> seconds;  ///< wall time per stage
 };

@@ -628,9 +628,9 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
     }
     for (std::size_t e = 0; e < fresh.size(); ++e) {
         if (partner_of_new[e] >= 0) continue;
-        // An element without partner joins the output when it lies mostly on new ground; on ground
-        // already synthesised the old elements stand (adding it there would crowd a porous pattern
-        // such as chain mail or rivets, which a collision test alone does not prevent).
+        // An element without partner joins the output unless it lies mostly on ground the output
+        // already covers and an old element stands at about the same place (adding it there would
+        // crowd a porous pattern such as chain mail or rivets, which a collision test alone allows).
         const Mesh& m = fresh[e].mesh;
         double on_new = 0.0, total = 0.0;
         for (std::size_t f = 0; f < m.faces.size(); ++f) {
@@ -640,8 +640,23 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             if (!in_overlap(ov.new_side, centroid(m, static_cast<int>(f)))) on_new += a;
         }
         if (on_new < 0.5 * total) {
-            ++plan.crowding;
-            continue;
+            // ... and when an old element stands at (nearly) the same place.
+            const Box3 b = bounding_box(m);
+            const Vec3 c = 0.5 * (b.min + b.max);
+            const double diameter = std::max(b.size().x(), b.size().y());
+            bool twin = false;
+            for (const OldElement& oe : old) {
+                const Box3 ob = bounding_box(oe.mesh);
+                const Vec3 oc = 0.5 * (ob.min + ob.max);
+                if (Vec2(oc.x() - c.x(), oc.y() - c.y()).norm() < 0.6 * diameter) {
+                    twin = true;
+                    break;
+                }
+            }
+            if (twin) {
+                ++plan.crowding;
+                continue;
+            }
         }
         PatchPlan::Change ch;
         ch.kind = PatchPlan::Change::Added;

@@ -45,6 +45,20 @@ double mesh_area(const Mesh& m) {
     return a;
 }
 
+/// Inset of the density window, as a fraction of the swatch's sides.
+constexpr double kDensityInset = 0.15;
+
+/// Area of the faces whose centroid lies in [x0, x1] x [y0, y1], per unit area of that window.
+double window_density(const Mesh& m, double x0, double y0, double x1, double y1) {
+    double a = 0.0;
+    for (const Tri& f : m.faces) {
+        const Vec3 c = (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0;
+        if (c.x() < x0 || c.x() > x1 || c.y() < y0 || c.y() > y1) continue;
+        a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+    }
+    return a / ((x1 - x0) * (y1 - y0));
+}
+
 Vec3 area_centroid(const Mesh& m) {
     Vec3 c = Vec3::Zero();
     double total = 0.0;
@@ -249,6 +263,36 @@ private:
         return ids;
     }
 
+    /// Beyond the paper: the best whole-cell translation is refined by translation-only ICP over the
+    /// sub-patch samples (at most half a cell), so that lattice-like swatches (chain mail) line up
+    /// exactly instead of within half a cell; element deformation then has less to correct.
+    Vec2 refine_translation(const std::vector<quilt::Sample>& samples, const Vec2& start) const {
+        if (samples.size() < 8) return start;
+        Vec2 t = start;
+        const double reach = 2.0 * params_.metric.unit;
+        const std::size_t step = std::max<std::size_t>(1, samples.size() / 512);
+        for (int it = 0; it < 4; ++it) {
+            Vec2 sum = Vec2::Zero();
+            int n = 0;
+            for (std::size_t k = 0; k < samples.size(); k += step) {
+                const Vec3 p = samples[k].position - Vec3(t.x(), t.y(), 0.0);
+                double score = 0.0;
+                const ClosestHit h = index_.best_match(p, samples[k].normal, params_.metric, &score);
+                if (h.face < 0 || h.distance > reach) continue;
+                sum += Vec2(p.x() - h.point.x(), p.y() - h.point.y());
+                ++n;
+            }
+            if (n < 8) break;
+            Vec2 next = t + sum / n;
+            const Vec2 off = next - start;
+            if (off.norm() > 0.5 * cell_) next = start + off * (0.5 * cell_ / off.norm());
+            const double moved = (next - t).norm();
+            t = next;
+            if (moved < 1e-3 * params_.metric.unit) break;
+        }
+        return t;
+    }
+
     void place_patch(int si, int sj) {
         auto t0 = Clock::now();
         // P_out: k x k cells around the seed.
@@ -271,11 +315,12 @@ private:
         const int ti = static_cast<int>(std::lround(choice.translation.x() / cell_));
         const int tj = static_cast<int>(std::lround(choice.translation.y() / cell_));
         ++phase_count_[{((ti % sx_) + sx_) % sx_, ((tj % sy_) + sy_) % sy_}];
+        const Vec2 t = refine_translation(samples, choice.translation);
         stage_seconds_["matching"] += seconds_since(t0);
         t0 = Clock::now();
 
         // The placed patch and the overlapping region.
-        const Vec3 shift(choice.translation.x(), choice.translation.y(), 0.0);
+        const Vec3 shift(t.x(), t.y(), 0.0);
         const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
         std::vector<quilt::NewElement> fresh;
         for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
@@ -290,7 +335,7 @@ private:
             const int i = g.cell_of(x), j = g.cell_of(y);
             if (!g.valid(i, j)) return false;
             const std::size_t c = g.at(i, j);
-            return g.processed[c] != 0 || g.occupied[c] > 0;
+            return g.occupied[c] > 0;
         };
         std::vector<quilt::OldElement> old;
         std::vector<int> old_ids = elements_in_rect(fx0, fy0, fx1, fy1);
@@ -444,8 +489,13 @@ private:
         r.vertices = static_cast<int>(result.mesh.vertices.size());
         r.elements = static_cast<int>(result.source_element.size());
         r.cell_size = cell_;
-        r.swatch_density = sw_.area / (sw_.box.size().x() * sw_.box.size().y());
-        r.output_density = mesh_area(result.mesh) / (opt_.width * opt_.height);
+        // Densities by the same estimator on both sides: face area (by face centroid) per area of a
+        // window inset from the border, which keeps ragged swatch margins out of the figure.
+        const double mx = kDensityInset * sw_.box.size().x(), my = kDensityInset * sw_.box.size().y();
+        r.swatch_density = window_density(sw_.mesh, mx, my, sw_.box.size().x() - mx, sw_.box.size().y() - my);
+        r.output_density = (opt_.width > 2 * mx && opt_.height > 2 * my)
+                               ? window_density(result.mesh, mx, my, opt_.width - mx, opt_.height - my)
+                               : mesh_area(result.mesh) / (opt_.width * opt_.height);
         for (const auto& [phase, n] : phase_count_) r.largest_translation_share = std::max(r.largest_translation_share, n);
         for (const auto& [stage, s] : stage_seconds_) r.seconds.emplace_back(stage, s);
         result.report = r;
