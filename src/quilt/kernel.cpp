@@ -6,6 +6,7 @@
 #include "quilt/deform.h"
 
 #include <maxflow.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -553,8 +554,9 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
 
     // Section 2.5: vertex-face pairs over the overlap, pruned; element relations.
     struct Pair { int vertex; int face; Vec3 bary; Vec3 point; };
-    std::map<std::pair<int, int>, std::vector<Pair>> relations;  // (old index, new index) -> pairs
-    for (std::size_t o = 0; o < old.size(); ++o) {
+    // Per old element (in parallel, merged in order so the result does not depend on scheduling).
+    std::vector<std::map<int, std::vector<Pair>>> per_old(old.size());
+    tbb::parallel_for(std::size_t(0), old.size(), [&](std::size_t o) {
         const Mesh& m = old[o].mesh;
         const std::vector<Vec3> normals = vertex_normals(m);
         std::vector<char> used(m.vertices.size(), 0);
@@ -567,9 +569,12 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             if (normals[v].dot(index.face_normal(h.face)) < 0.0) continue;           // opposite normals
             if (h.distance > params.prune_factor * mean_edge(all, h.face)) continue;  // far pair
             const int e = elem_of_face[static_cast<std::size_t>(h.face)];
-            relations[{static_cast<int>(o), e}].push_back({static_cast<int>(v), local_face[static_cast<std::size_t>(h.face)], h.bary, h.point});
+            per_old[o][e].push_back({static_cast<int>(v), local_face[static_cast<std::size_t>(h.face)], h.bary, h.point});
         }
-    }
+    });
+    std::map<std::pair<int, int>, std::vector<Pair>> relations;  // (old index, new index) -> pairs
+    for (std::size_t o = 0; o < old.size(); ++o)
+        for (auto& [e, pairs] : per_old[o]) relations[{static_cast<int>(o), e}] = std::move(pairs);
     // Projected-overlap test removes false relations; then one partner per element, strongest first.
     struct Rel { std::size_t count; int o, e; };
     std::vector<Rel> rels;
@@ -586,11 +591,17 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         partner_of_new[static_cast<std::size_t>(r.e)] = r.o;
     }
 
-    for (std::size_t o = 0; o < old.size(); ++o) {
+    // Deformation and merging of each corresponding pair, in parallel; results kept in pair order.
+    std::vector<std::size_t> matched;
+    for (std::size_t o = 0; o < old.size(); ++o)
+        if (partner_of_old[o] >= 0) matched.push_back(o);
+    plan.correspondences = static_cast<int>(matched.size());
+    std::vector<PatchPlan::Change> merged_changes(matched.size());
+    std::vector<std::string> failures(matched.size());
+    tbb::parallel_for(std::size_t(0), matched.size(), [&](std::size_t k) {
+        const std::size_t o = matched[k];
         const int e = partner_of_old[o];
-        if (e < 0) continue;
-        ++plan.correspondences;
-        const auto& pairs = relations[{static_cast<int>(o), e}];
+        const auto& pairs = relations.at({static_cast<int>(o), e});
         // Section 2.6: deform both elements towards the averaged targets (Eq. 5 and Eq. 6).
         std::vector<PointConstraint> cons_out, cons_in;
         const Mesh& mo = old[o].mesh;
@@ -618,13 +629,19 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             ch.source = outcome == StitchOutcome::KeepOld ? -1 : fresh[static_cast<std::size_t>(e)].source;
             ch.mesh = std::move(merged);
         } else {
-            ++plan.stitch_failures;
-            ++plan.failure_reasons[why];
+            failures[k] = why.empty() ? "unknown" : why;
             ch.kind = PatchPlan::Change::Deformed;
             ch.source = -1;
             ch.mesh = std::move(out_d);
         }
-        plan.changes.push_back(std::move(ch));
+        merged_changes[k] = std::move(ch);
+    });
+    for (std::size_t k = 0; k < matched.size(); ++k) {
+        if (!failures[k].empty()) {
+            ++plan.stitch_failures;
+            ++plan.failure_reasons[failures[k]];
+        }
+        plan.changes.push_back(std::move(merged_changes[k]));
     }
     for (std::size_t e = 0; e < fresh.size(); ++e) {
         if (partner_of_new[e] >= 0) continue;
