@@ -436,8 +436,18 @@ Mesh compact(const Mesh& m) {
     return out;
 }
 
+double selected_area(const Mesh& m, const std::vector<char>& sel) {
+    double a = 0.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        if (sel[f]) {
+            const Tri& t = m.faces[f];
+            a += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+        }
+    return a;
+}
+
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, const KernelParams& params, Mesh* result, std::string* why,
-                     StitchOutcome* outcome) {
+                     StitchOutcome* outcome, OwnAreas* own) {
     auto fail = [why](const char* reason) {
         if (why) *why = reason;
         return false;
@@ -446,6 +456,10 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
     const double reach = params.anchor_reach * params.metric.unit;
     const std::vector<char> anchor_out = anchored_faces(c_out, idx_in, reach, &ov.old_side);
     const std::vector<char> anchor_in = anchored_faces(c_in, idx_out, reach, nullptr);
+    if (own) {
+        own->old_part = selected_area(c_out, anchor_out);
+        own->new_part = selected_area(c_in, anchor_in);
+    }
     const bool out_free = std::find(anchor_out.begin(), anchor_out.end(), 1) == anchor_out.end();
     const bool in_free = std::find(anchor_in.begin(), anchor_in.end(), 1) == anchor_in.end();
     if (outcome) *outcome = StitchOutcome::Stitched;
@@ -622,12 +636,21 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         Mesh merged;
         std::string why;
         StitchOutcome outcome = StitchOutcome::Stitched;
-        if (stitch_elements(out_d, in_d, ov, params, &merged, &why, &outcome)) {
+        OwnAreas own;
+        // When the stitch fails or its result does not fit, the element that covers more ground of its
+        // own survives whole (the paper removes elements it cannot make whole; we keep one of the two).
+        if (stitch_elements(out_d, in_d, ov, params, &merged, &why, &outcome, &own)) {
             ch.kind = outcome == StitchOutcome::UseNew    ? PatchPlan::Change::Replaced
                       : outcome == StitchOutcome::KeepOld ? PatchPlan::Change::Deformed
                                                           : PatchPlan::Change::Stitched;
             ch.source = outcome == StitchOutcome::KeepOld ? -1 : fresh[static_cast<std::size_t>(e)].source;
             ch.mesh = std::move(merged);
+            if (outcome == StitchOutcome::Stitched && own.new_part > own.old_part) ch.fallback = in_d;
+        } else if (own.new_part > own.old_part) {
+            failures[k] = why.empty() ? "unknown" : why;
+            ch.kind = PatchPlan::Change::Replaced;
+            ch.source = fresh[static_cast<std::size_t>(e)].source;
+            ch.mesh = std::move(in_d);
         } else {
             failures[k] = why.empty() ? "unknown" : why;
             ch.kind = PatchPlan::Change::Deformed;

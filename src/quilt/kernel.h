@@ -50,6 +50,8 @@ struct PatchPlan {
         int source = -1;   ///< swatch element of the result
         Mesh mesh;         ///< the resulting element
         enum Kind { Deformed, Replaced, Stitched, Added } kind = Added;
+        /// Tried when `mesh` collides with the output: the partner whole (empty: keep the old element).
+        Mesh fallback;
     };
     /// Old elements deformed in place, replaced by their partner, or stitched with it; and new
     /// elements without partner. Applied in this order.
@@ -71,8 +73,13 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
 /// points constrain Eq. 5, the loops are joined by a triangle strip and the seam relaxed (Stitched).
 /// Returns false (and leaves `result` untouched) when no closed, manifold element results.
 enum class StitchOutcome { Stitched, UseNew, KeepOld };
+/// Area of the faces each element must keep (only it provides them), filled on every return.
+struct OwnAreas {
+    double old_part = 0.0;
+    double new_part = 0.0;
+};
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& overlap, const KernelParams& params, Mesh* result,
-                     std::string* why = nullptr, StitchOutcome* outcome = nullptr);
+                     std::string* why = nullptr, StitchOutcome* outcome = nullptr, OwnAreas* own = nullptr);
 
 /// True when every edge has exactly two faces with opposite orientation (a closed, oriented,
 /// edge-manifold surface).

@@ -366,19 +366,25 @@ private:
             for (const auto* ch : pending) {
                 std::vector<int> ignore;
                 if (ch->old_id >= 0) ignore.push_back(elems_[static_cast<std::size_t>(ch->old_id)].collider_id);
-                if (collider_.collides(ch->mesh, ignore)) {
-                    refused.push_back(ch);
-                    continue;
+                const Mesh* mesh = &ch->mesh;
+                Kind kind = ch->kind;
+                if (collider_.collides(*mesh, ignore)) {
+                    if (ch->fallback.faces.empty() || collider_.collides(ch->fallback, ignore)) {
+                        refused.push_back(ch);
+                        continue;
+                    }
+                    mesh = &ch->fallback;  // the partner whole instead of the stitched element
+                    kind = Kind::Replaced;
                 }
-                if (ch->kind == Kind::Added) {
-                    add_element(ch->mesh, ch->source);
+                if (kind == Kind::Added) {
+                    add_element(*mesh, ch->source);
                     continue;
                 }
                 const int source = ch->source >= 0 ? ch->source : elems_[static_cast<std::size_t>(ch->old_id)].source;
                 remove_element(ch->old_id);
-                add_element(ch->mesh, source);
-                if (ch->kind == Kind::Stitched) ++report_.elements_stitched;
-                if (ch->kind == Kind::Replaced) ++report_.elements_replaced;
+                add_element(*mesh, source);
+                if (kind == Kind::Stitched) ++report_.elements_stitched;
+                if (kind == Kind::Replaced) ++report_.elements_replaced;
             }
             if (refused.size() == pending.size()) break;
             pending = std::move(refused);
