@@ -4,6 +4,7 @@
 
 #include "meshquilt/analysis.h"
 #include "meshquilt/errors.h"
+#include "support/expect_error.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -24,18 +25,7 @@ namespace shapes = test::shapes;
 constexpr double kPi = 3.14159265358979323846;
 
 ::testing::AssertionResult invalid_with(const std::function<void()>& f, const std::vector<std::string>& fragments) {
-    try {
-        f();
-    } catch (const InvalidInput& e) {
-        const std::string what = e.what();
-        for (const std::string& frag : fragments)
-            if (what.find(frag) == std::string::npos)
-                return ::testing::AssertionFailure() << "message \"" << what << "\" lacks \"" << frag << "\"";
-        return ::testing::AssertionSuccess();
-    } catch (const std::exception& e) {
-        return ::testing::AssertionFailure() << "threw the wrong type: " << e.what();
-    }
-    return ::testing::AssertionFailure() << "did not throw";
+    return test::throws_with<InvalidInput>(f, fragments);
 }
 
 /// validate(mesh, "m.obj", options) must throw InvalidInput whose message contains the fragments.

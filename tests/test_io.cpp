@@ -5,6 +5,7 @@
 #include "meshquilt/analysis.h"
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
+#include "support/expect_error.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -71,22 +72,7 @@ std::string slurp(const std::string& path) {
     return s.str();
 }
 
-/// Runs `f`, which must throw E with a message containing every fragment.
-template <class E>
-::testing::AssertionResult throws_with(const std::function<void()>& f, const std::vector<std::string>& fragments) {
-    try {
-        f();
-    } catch (const E& e) {
-        const std::string what = e.what();
-        for (const std::string& frag : fragments)
-            if (what.find(frag) == std::string::npos)
-                return ::testing::AssertionFailure() << "message \"" << what << "\" lacks \"" << frag << "\"";
-        return ::testing::AssertionSuccess();
-    } catch (const std::exception& e) {
-        return ::testing::AssertionFailure() << "threw the wrong type: " << e.what();
-    }
-    return ::testing::AssertionFailure() << "did not throw";
-}
+using test::throws_with;
 
 ::testing::AssertionResult read_fails(const std::string& path, const std::vector<std::string>& fragments) {
     return throws_with<InvalidInput>([&] { read_mesh(path); }, fragments);
