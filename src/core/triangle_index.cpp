@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <limits>
 
 namespace meshquilt {
@@ -46,8 +47,10 @@ struct TriangleIndex::Impl {
     std::vector<Vec3> normals;
     Tree tree;
     SampleCloud cloud;
-    std::unique_ptr<KdTree> kd;
+    std::unique_ptr<KdTree> kd;  ///< built on the first best_match (most indices only answer closest())
+    std::once_flag kd_once;
     double max_edge = 0.0;
+    void build_kd();
 };
 
 TriangleIndex::TriangleIndex() = default;
@@ -66,14 +69,17 @@ TriangleIndex::TriangleIndex(const Mesh& mesh) : impl_(std::make_unique<Impl>())
         impl_->tree.build();
         impl_->tree.accelerate_distance_queries();
     }
+}
+
+void TriangleIndex::Impl::build_kd() {
     // kd-tree over vertices and face centroids for the matching queries of Eq. 2.
     std::vector<std::vector<int>> faces_of(mesh.vertices.size());
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)
         for (int k = 0; k < 3; ++k) {
             faces_of[static_cast<std::size_t>(mesh.faces[f][k])].push_back(static_cast<int>(f));
-            impl_->max_edge = std::max(impl_->max_edge, (mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]).norm());
+            max_edge = std::max(max_edge, (mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]).norm());
         }
-    SampleCloud& c = impl_->cloud;
+    SampleCloud& c = cloud;
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
         if (faces_of[v].empty()) continue;
         c.points.push_back(mesh.vertices[v]);
@@ -87,8 +93,8 @@ TriangleIndex::TriangleIndex(const Mesh& mesh) : impl_(std::make_unique<Impl>())
         c.offset.push_back(static_cast<int>(c.faces.size()));
     }
     if (!c.points.empty()) {
-        impl_->kd = std::make_unique<KdTree>(3, c, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-        impl_->kd->buildIndex();
+        kd = std::make_unique<KdTree>(3, c, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+        kd->buildIndex();
     }
 }
 
@@ -97,6 +103,7 @@ const Mesh& TriangleIndex::mesh() const { return impl_->mesh; }
 const Vec3& TriangleIndex::face_normal(int f) const { return impl_->normals[static_cast<std::size_t>(f)]; }
 
 ClosestHit TriangleIndex::closest(const Vec3& p) const {
+    if (empty()) return {-1, std::numeric_limits<double>::infinity(), p, Vec3::Zero()};
     const auto pp = impl_->tree.closest_point_and_primitive(to_cgal(p));
     ClosestHit hit;
     hit.face = static_cast<int>(pp.second - impl_->triangles.cbegin());
@@ -110,10 +117,20 @@ ClosestHit TriangleIndex::closest(const Vec3& p) const {
 ClosestHit TriangleIndex::best_match(const Vec3& p, const Vec3& n, const MatchMetric& m, double* score) const {
     // Eq. 2 over the faces around the nearest sample points (vertices and face centroids): the kd-tree
     // plays the part of the paper's octree. Points farther than the cutoff from every face get the cap.
-    constexpr std::size_t kNeighbours = 8;
+    constexpr std::size_t kNeighbours = 6;
     std::uint32_t idx[kNeighbours];
     double d2[kNeighbours];
-    const std::size_t found = impl_->kd->knnSearch(p.data(), kNeighbours, idx, d2);
+    std::call_once(impl_->kd_once, [this] { impl_->build_kd(); });
+    if (!impl_->kd) {
+        if (score) *score = std::numeric_limits<double>::infinity();
+        return {};
+    }
+    // Approximate search (neighbours within 1.5 times the true distances) is enough to collect the
+    // candidate faces; D itself is evaluated exactly on them.
+    nanoflann::KNNResultSet<double, std::uint32_t> knn(kNeighbours);
+    knn.init(idx, d2);
+    impl_->kd->findNeighbors(knn, p.data(), nanoflann::SearchParams(32, 0.5f));
+    const std::size_t found = knn.size();
     const double cap = m.cutoff > 0 ? 1.0 + m.lambda * m.cutoff : std::numeric_limits<double>::infinity();
     const auto& V = impl_->mesh.vertices;
     int faces[kNeighbours * 16];

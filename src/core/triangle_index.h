@@ -39,10 +39,10 @@ public:
     [[nodiscard]] const Mesh& mesh() const;
     [[nodiscard]] const Vec3& face_normal(int f) const;  ///< unit normal (zero for degenerate faces)
 
-    /// Closest point on the mesh (by Euclidean distance). Requires !empty().
+    /// Closest point on the mesh (by Euclidean distance); face -1 at infinite distance when empty().
     [[nodiscard]] ClosestHit closest(const Vec3& p) const;
     /// Eq. 2: the face minimising D(p, f) for a point with unit normal n, and that minimum D (capped,
-    /// see MatchMetric::cutoff) in `score`. The minimum runs over the faces around the 8 nearest
+    /// see MatchMetric::cutoff) in `score`. The minimum runs over the faces around the 6 nearest
     /// sample points (vertices and face centroids, in a kd-tree), which holds the closest face for
     /// any point near the surface.
     [[nodiscard]] ClosestHit best_match(const Vec3& p, const Vec3& n, const MatchMetric& metric, double* score) const;
