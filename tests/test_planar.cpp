@@ -256,11 +256,25 @@ TEST(PlanarQuiltErrors, RejectsBadOptions) {
     EXPECT_THROW(mq::quilt_plane(swatch, o), mq::InvalidInput);
     o.width = 1e9;
     o.height = 1e9;
+    EXPECT_THROW(mq::quilt_plane(swatch, o), mq::InvalidInput);
+    // A moderate output on an absurdly fine grid: refused for its number of cells.
+    o.width = o.height = 100;
+    o.cell_size = 0.01;
     try {
         mq::quilt_plane(swatch, o);
-        FAIL() << "an absurd output size must be rejected before any work";
+        FAIL() << "an absurd grid must be rejected before any work";
     } catch (const mq::InvalidInput& e) {
         EXPECT_NE(std::string(e.what()).find("grid cells"), std::string::npos) << e.what();
+    }
+    o.cell_size = 0.0;
+    // Far too many faces (pebbles: 7,560 faces per ~91 square units): refused with the estimate.
+    o.width = o.height = 3000;
+    o.cell_size = 0.0;
+    try {
+        mq::quilt_plane(swatch, o);
+        FAIL() << "an output of hundreds of millions of faces must be rejected before any work";
+    } catch (const mq::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("million faces"), std::string::npos) << e.what();
     }
     o.width = o.height = 10;
     o.cell_size = 1e6;

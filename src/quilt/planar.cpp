@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 #include <sstream>
@@ -38,12 +39,22 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+/// A number for messages: 6 significant digits, no trailing zeros.
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
 double mesh_area(const Mesh& m) {
     double a = 0.0;
     for (const Tri& f : m.faces)
         a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
     return a;
 }
+
+/// Largest output we attempt, in faces (about 2-3 GB of memory and some minutes).
+constexpr double kMaxOutputFaces = 20e6;
 
 /// Inset of the density window, as a fraction of the swatch's sides.
 constexpr double kDensityInset = 0.15;
@@ -175,16 +186,24 @@ public:
         sx_ = static_cast<int>(std::floor(lx / cell_ + 1e-9));
         sy_ = static_cast<int>(std::floor(ly / cell_ + 1e-9));
         if (sx_ < 2 || sy_ < 2)
-            throw InvalidInput("cell size " + std::to_string(cell_) + " is too large for the swatch footprint (" + std::to_string(lx) + " x " +
-                               std::to_string(ly) + "): the swatch must span at least 2 cells each way");
+            throw InvalidInput("cell size " + num(cell_) + " is too large for the swatch footprint (" + num(lx) + " x " +
+                               num(ly) + "): the swatch must span at least 2 cells each way");
         k_ = opt_.subpatch_cells > 0 ? opt_.subpatch_cells : std::max(2, static_cast<int>(std::lround(std::min(sx_, sy_) / 3.0)));
         k_ = std::min({k_, sx_, sy_});
+        // Refuse outputs that would exhaust memory or run for hours, before any work.
+        const double footprints = (opt_.width * opt_.height) / (lx * ly);
+        const double estimated_faces = footprints * static_cast<double>(sw_.mesh.faces.size());
+        if (estimated_faces > kMaxOutputFaces)
+            throw InvalidInput("an output of " + num(opt_.width) + " x " + num(opt_.height) + " holds about " +
+                               std::to_string(static_cast<long long>(footprints)) + " swatch footprints, about " +
+                               std::to_string(static_cast<long long>(estimated_faces / 1e6)) + " million faces (limit " +
+                               std::to_string(static_cast<long long>(kMaxOutputFaces / 1e6)) + " million): choose a smaller output");
         const int nx = static_cast<int>(std::ceil(opt_.width / cell_ - 1e-9));
         const int ny = static_cast<int>(std::ceil(opt_.height / cell_ - 1e-9));
         const double cells = static_cast<double>(nx) * ny;
         if (cells > 4.0e6)
-            throw InvalidInput("output of " + std::to_string(opt_.width) + " x " + std::to_string(opt_.height) + " needs " +
-                               std::to_string(static_cast<long long>(cells)) + " grid cells of size " + std::to_string(cell_) +
+            throw InvalidInput("output of " + num(opt_.width) + " x " + num(opt_.height) + " needs " +
+                               std::to_string(static_cast<long long>(cells)) + " grid cells of size " + num(cell_) +
                                " (limit 4,000,000): choose a smaller output or a larger --cell");
         grid_.init(nx, ny, sx_, sy_, cell_);
         params_.metric.lambda = opt_.lambda;
@@ -214,7 +233,7 @@ private:
     void validate_options() const {
         auto bad = [](double v) { return !std::isfinite(v) || v <= 0.0; };
         if (bad(opt_.width) || bad(opt_.height))
-            throw InvalidInput("output size must be positive and finite (got " + std::to_string(opt_.width) + " x " + std::to_string(opt_.height) + ")");
+            throw InvalidInput("output size must be positive and finite (got " + num(opt_.width) + " x " + num(opt_.height) + ")");
         if (!std::isfinite(opt_.cell_size)) throw InvalidInput("cell size must be finite");
         if (bad(opt_.lambda)) throw InvalidInput("lambda must be positive");
         if (bad(opt_.mu)) throw InvalidInput("mu must be positive");
