@@ -688,7 +688,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             for (const OldElement& oe : old) {
                 const Box3 ob = bounding_box(oe.mesh);
                 const Vec3 oc = 0.5 * (ob.min + ob.max);
-                if (Vec2(oc.x() - c.x(), oc.y() - c.y()).norm() < 0.6 * diameter) {
+                if (Vec2(oc.x() - c.x(), oc.y() - c.y()).norm() < 0.25 * diameter) {
                     twin = true;
                     break;
                 }
