@@ -680,15 +680,19 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             if (!in_overlap(ov.new_side, centroid(m, static_cast<int>(f)))) on_new += a;
         }
         if (on_new < 0.5 * total) {
-            // ... and when an old element stands at (nearly) the same place.
+            // ... and when an old element stands at about the same place: their footprints (xy boxes)
+            // overlap by at least half of their union. (A distance between centres would call a long
+            // thread the twin of its parallel neighbour.)
             const Box3 b = bounding_box(m);
-            const Vec3 c = 0.5 * (b.min + b.max);
-            const double diameter = std::max(b.size().x(), b.size().y());
+            const double area_b = b.size().x() * b.size().y();
             bool twin = false;
             for (const OldElement& oe : old) {
                 const Box3 ob = bounding_box(oe.mesh);
-                const Vec3 oc = 0.5 * (ob.min + ob.max);
-                if (Vec2(oc.x() - c.x(), oc.y() - c.y()).norm() < 0.25 * diameter) {
+                const double ix = std::min(b.max.x(), ob.max.x()) - std::max(b.min.x(), ob.min.x());
+                const double iy = std::min(b.max.y(), ob.max.y()) - std::max(b.min.y(), ob.min.y());
+                if (ix <= 0 || iy <= 0) continue;
+                const double inter = ix * iy;
+                if (inter >= 0.5 * (area_b + ob.size().x() * ob.size().y() - inter)) {
                     twin = true;
                     break;
                 }
