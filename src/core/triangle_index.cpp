@@ -209,8 +209,7 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 std::vector<Vec3> face_normals(const Mesh& mesh) {
     std::vector<Vec3> n(mesh.faces.size(), Vec3::Zero());
     for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
-        const Tri& f = mesh.faces[i];
-        const Vec3 c = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+        const Vec3 c = face_cross(mesh, i);
         const double len = c.norm();
         if (len > 0) n[i] = c / len;
     }
@@ -219,9 +218,9 @@ std::vector<Vec3> face_normals(const Mesh& mesh) {
 
 std::vector<Vec3> vertex_normals(const Mesh& mesh) {
     std::vector<Vec3> n(mesh.vertices.size(), Vec3::Zero());
-    for (const Tri& f : mesh.faces) {
-        const Vec3 c = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
-        for (int k = 0; k < 3; ++k) n[f[k]] += c;
+    for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
+        const Vec3 c = face_cross(mesh, i);
+        for (int k = 0; k < 3; ++k) n[mesh.faces[i][k]] += c;
     }
     for (Vec3& v : n) {
         const double len = v.norm();

@@ -57,6 +57,17 @@ private:
 /// Closest point on a triangle and its barycentric coordinates (Ericson, Real-Time Collision Detection 5.1.5).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* bary);
 
+/// Cross product of a face's edges (twice its area times its unit normal).
+inline Vec3 face_cross(const Mesh& mesh, std::size_t f) {
+    const Tri& t = mesh.faces[f];
+    return (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+}
+inline double face_area(const Mesh& mesh, std::size_t f) { return 0.5 * face_cross(mesh, f).norm(); }
+inline Vec3 face_centroid(const Mesh& mesh, std::size_t f) {
+    const Tri& t = mesh.faces[f];
+    return (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
+}
+
 /// Area-weighted unit vertex normals.
 std::vector<Vec3> vertex_normals(const Mesh& mesh);
 /// Unit face normals (zero for degenerate faces).

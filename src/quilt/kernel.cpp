@@ -24,10 +24,7 @@ using Side = std::function<bool(double, double)>;
 
 bool in_overlap(const Side& ov, const Vec3& p) { return ov(p.x(), p.y()); }
 
-Vec3 centroid(const Mesh& m, int f) {
-    const Tri& t = m.faces[static_cast<std::size_t>(f)];
-    return (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
-}
+Vec3 centroid(const Mesh& m, int f) { return face_centroid(m, static_cast<std::size_t>(f)); }
 
 double mean_edge(const Mesh& m, int f) {
     const Tri& t = m.faces[static_cast<std::size_t>(f)];
@@ -439,10 +436,7 @@ Mesh compact(const Mesh& m) {
 double selected_area(const Mesh& m, const std::vector<char>& sel) {
     double a = 0.0;
     for (std::size_t f = 0; f < m.faces.size(); ++f)
-        if (sel[f]) {
-            const Tri& t = m.faces[f];
-            a += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
-        }
+        if (sel[f]) a += face_area(m, f);
     return a;
 }
 
@@ -674,8 +668,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         const Mesh& m = fresh[e].mesh;
         double on_new = 0.0, total = 0.0;
         for (std::size_t f = 0; f < m.faces.size(); ++f) {
-            const Tri& t = m.faces[f];
-            const double a = (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+            const double a = face_area(m, f);
             total += a;
             if (!in_overlap(ov.new_side, centroid(m, static_cast<int>(f)))) on_new += a;
         }

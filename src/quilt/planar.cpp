@@ -48,8 +48,7 @@ std::string num(double v) {
 
 double mesh_area(const Mesh& m) {
     double a = 0.0;
-    for (const Tri& f : m.faces)
-        a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+    for (std::size_t f = 0; f < m.faces.size(); ++f) a += face_area(m, f);
     return a;
 }
 
@@ -62,10 +61,10 @@ constexpr double kDensityInset = 0.15;
 /// Area of the faces whose centroid lies in [x0, x1] x [y0, y1], per unit area of that window.
 double window_density(const Mesh& m, double x0, double y0, double x1, double y1) {
     double a = 0.0;
-    for (const Tri& f : m.faces) {
-        const Vec3 c = (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const Vec3 c = face_centroid(m, f);
         if (c.x() < x0 || c.x() > x1 || c.y() < y0 || c.y() > y1) continue;
-        a += 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+        a += face_area(m, f);
     }
     return a / ((x1 - x0) * (y1 - y0));
 }
@@ -73,9 +72,9 @@ double window_density(const Mesh& m, double x0, double y0, double x1, double y1)
 Vec3 area_centroid(const Mesh& m) {
     Vec3 c = Vec3::Zero();
     double total = 0.0;
-    for (const Tri& f : m.faces) {
-        const double a = 0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
-        c += a * (m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const double a = face_area(m, f);
+        c += a * face_centroid(m, f);
         total += a;
     }
     return total > 0 ? Vec3(c / total) : Vec3(bounding_box(m).min);
