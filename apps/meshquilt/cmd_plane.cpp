@@ -8,6 +8,7 @@
 #include "report_json.h"
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 
 namespace meshquilt::cli {
@@ -56,8 +57,12 @@ void add_plane_command(CLI::App& root, std::vector<Command>& commands) {
         for (const auto& w : r.warnings) std::cerr << "meshquilt: warning: " << w << '\n';
         WriteOptions wo;
         wo.element_of_face = r.element_of_face;
-        wo.comment = "meshquilt plane " + args->swatch + " --size " + std::to_string(o.width) + " " + std::to_string(o.height) +
-                     " --seed " + std::to_string(o.seed);
+        auto num = [](double v) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%.10g", v);
+            return std::string(buf);
+        };
+        wo.comment = "meshquilt plane " + args->swatch + " --size " + num(o.width) + " " + num(o.height) + " --seed " + std::to_string(o.seed);
         write_mesh(args->output, r.mesh, wo);
         if (!args->report.empty()) {
             const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
