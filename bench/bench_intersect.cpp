@@ -21,6 +21,8 @@
 namespace {
 
 using meshquilt::ElementCollider;
+using meshquilt::ElementMesh;
+using meshquilt::concatenate;
 using meshquilt::Mesh;
 using meshquilt::Tri;
 using meshquilt::Vec3;
@@ -57,27 +59,10 @@ std::vector<Mesh> chain_mail(int n, int nu, int nv) {
     return rings;
 }
 
-struct Combined {
-    Mesh mesh;
-    std::vector<int> element_of_face;
-};
-
-Combined combine(const std::vector<Mesh>& parts) {
-    Combined c;
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-        const int off = static_cast<int>(c.mesh.vertices.size());
-        c.mesh.vertices.insert(c.mesh.vertices.end(), parts[k].vertices.begin(), parts[k].vertices.end());
-        for (const Tri& f : parts[k].faces) {
-            c.mesh.faces.push_back(f + Tri::Constant(off));
-            c.element_of_face.push_back(static_cast<int>(k));
-        }
-    }
-    return c;
-}
 
 // 32 x 32 rings of 288 faces: 294,912 faces, 1024 elements. Arg: threads.
 void BM_IntersectingElementPairs(benchmark::State& state) {
-    static const Combined sheet = combine(chain_mail(32, 24, 6));
+    static const ElementMesh sheet = concatenate(chain_mail(32, 24, 6));
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
     std::size_t pairs = 0;
     for (auto _ : state) {

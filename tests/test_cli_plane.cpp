@@ -71,7 +71,7 @@ TEST_F(CliPlane, SameSeedGivesByteIdenticalFiles) {
         ++pos;
     }
     EXPECT_EQ(static_cast<int>(groups), j.at("elements").get<int>());
-    for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
+    for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "elements_crowded_out", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_TRUE(j.at("seconds").contains("matching"));
     EXPECT_TRUE(j.at("seconds").contains("merging"));
 }

@@ -15,6 +15,7 @@ nlohmann::json report_to_json(const QualityReport& r, double total_seconds) {
     j["elements_replaced"] = r.elements_replaced;
     j["stitch_failures"] = r.stitch_failures;
     j["collisions_avoided"] = r.collisions_avoided;
+    j["elements_crowded_out"] = r.elements_crowded_out;
     j["cell_size"] = r.cell_size;
     j["swatch_density"] = r.swatch_density;
     j["output_density"] = r.output_density;

@@ -38,8 +38,8 @@ struct WriteOptions {
     /// Element id per face; OBJ writes one `o element_<id>` group per element, in increasing id
     /// order (faces keep their relative order within a group). May be empty.
     std::vector<int> element_of_face;
-    /// Extra named group written first in OBJ (e.g. the base mesh with --with-base). May be empty.
-    std::string comment;  ///< written as a header comment where the format allows
+    /// Written as a header comment where the format allows (OBJ, PLY); may be empty.
+    std::string comment;
 };
 
 /// Writes by extension (.obj, .ply, .stl), atomically.

@@ -54,4 +54,8 @@ struct ElementMesh {
     int num_elements = 0;
 };
 
+/// The parts one after another in one mesh; part k becomes element k (its faces keep their order).
+ElementMesh concatenate(const std::vector<const Mesh*>& parts);
+ElementMesh concatenate(const std::vector<Mesh>& parts);
+
 }  // namespace meshquilt

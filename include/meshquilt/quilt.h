@@ -26,6 +26,7 @@ struct QualityReport {
     int elements_replaced = 0;    ///< old element inside the overlap replaced by its partner
     int stitch_failures = 0;      ///< stitches that could not be made; the old element was kept
     int collisions_avoided = 0;   ///< new elements not added because they would intersect the output
+    int elements_crowded_out = 0; ///< new elements without partner left out: an old element stands at about the same place
     double cell_size = 0.0;
     /// Element area per unit footprint area, counted by face centroid in a window inset by 15% of the
     /// swatch's sides from the border (of the swatch, and of the output), so both use one estimator.

@@ -426,13 +426,6 @@ bool is_closed_oriented(const Mesh& m) {
     return !m.faces.empty();
 }
 
-Mesh compact(const Mesh& m) {
-    Mesh out;
-    std::vector<char> all(m.faces.size(), 1);
-    append_faces(m, all, out);
-    return out;
-}
-
 double selected_area(const Mesh& m, const std::vector<char>& sel) {
     double a = 0.0;
     for (std::size_t f = 0; f < m.faces.size(); ++f)
@@ -547,16 +540,15 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
     if (fresh.empty()) return plan;
 
     // All new elements in one index; faces remember their element and local face.
-    Mesh all;
-    std::vector<int> elem_of_face, local_face;
-    for (std::size_t e = 0; e < fresh.size(); ++e) {
-        const int off = static_cast<int>(all.vertices.size());
-        all.vertices.insert(all.vertices.end(), fresh[e].mesh.vertices.begin(), fresh[e].mesh.vertices.end());
-        for (std::size_t f = 0; f < fresh[e].mesh.faces.size(); ++f) {
-            all.faces.push_back(fresh[e].mesh.faces[f] + Tri::Constant(off));
-            elem_of_face.push_back(static_cast<int>(e));
-            local_face.push_back(static_cast<int>(f));
-        }
+    std::vector<const Mesh*> parts;
+    for (const NewElement& ne : fresh) parts.push_back(&ne.mesh);
+    const ElementMesh combined = concatenate(parts);
+    const Mesh& all = combined.mesh;
+    const std::vector<int>& elem_of_face = combined.element_of_face;
+    std::vector<int> local_face(all.faces.size());
+    for (std::size_t f = 0, first = 0; f < all.faces.size(); ++f) {
+        if (f > 0 && elem_of_face[f] != elem_of_face[f - 1]) first = f;
+        local_face[f] = static_cast<int>(f - first);
     }
     const TriangleIndex index(all);
 

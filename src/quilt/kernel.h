@@ -57,7 +57,7 @@ struct PatchPlan {
     /// elements without partner. Applied in this order.
     std::vector<Change> changes;
     int stitch_failures = 0;
-    int crowding = 0;         ///< new elements without partner left out because they lie mostly on old ground
+    int crowding = 0;         ///< new elements without partner left out: mostly on old ground, an old element at about the same place
     int correspondences = 0;  ///< corresponding element pairs
     std::map<std::string, int> failure_reasons;  ///< why stitches failed, counted
 };
@@ -84,8 +84,5 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& overlap
 /// True when every edge has exactly two faces with opposite orientation (a closed, oriented,
 /// edge-manifold surface).
 bool is_closed_oriented(const Mesh& mesh);
-
-/// Removes unreferenced vertices (keeps face order).
-Mesh compact(const Mesh& mesh);
 
 }  // namespace meshquilt::quilt

@@ -363,6 +363,7 @@ private:
         t0 = Clock::now();
 
         report_.stitch_failures += plan.stitch_failures;
+        report_.elements_crowded_out += plan.crowding;
         for (const auto& [why, n] : plan.failure_reasons) failure_reasons_[why] += n;
         apply(plan);
         for (int j = tj; j < tj + sy_; ++j)
@@ -471,20 +472,12 @@ private:
             kept.push_back(static_cast<int>(id));
         }
         // Elements that still intersect another (the swatch's own did not) are removed, smaller first.
-        Mesh all;
-        std::vector<int> eof;
-        for (std::size_t k = 0; k < kept.size(); ++k) {
-            const Mesh& m = elems_[static_cast<std::size_t>(kept[k])].mesh;
-            const int off = static_cast<int>(all.vertices.size());
-            all.vertices.insert(all.vertices.end(), m.vertices.begin(), m.vertices.end());
-            for (const Tri& f : m.faces) {
-                all.faces.push_back(f + Tri::Constant(off));
-                eof.push_back(static_cast<int>(k));
-            }
-        }
+        std::vector<const Mesh*> kept_meshes;
+        for (int id : kept) kept_meshes.push_back(&elems_[static_cast<std::size_t>(id)].mesh);
         std::vector<char> drop(kept.size(), 0);
         if (swatch_elements_disjoint()) {
-            for (const auto& [a, b] : intersecting_element_pairs(all, eof)) {
+            const ElementMesh all = concatenate(kept_meshes);
+            for (const auto& [a, b] : intersecting_element_pairs(all.mesh, all.element_of_face)) {
                 if (drop[static_cast<std::size_t>(a)] || drop[static_cast<std::size_t>(b)]) continue;
                 const std::size_t fa = elems_[static_cast<std::size_t>(kept[static_cast<std::size_t>(a)])].mesh.faces.size();
                 const std::size_t fb = elems_[static_cast<std::size_t>(kept[static_cast<std::size_t>(b)])].mesh.faces.size();
@@ -492,19 +485,17 @@ private:
                 ++report_.elements_removed;
             }
         }
+        std::vector<const Mesh*> final_meshes;
         for (std::size_t k = 0; k < kept.size(); ++k) {
             if (drop[k]) continue;
             const OutputElement& e = elems_[static_cast<std::size_t>(kept[k])];
-            const int off = static_cast<int>(result.mesh.vertices.size());
-            const int eid = static_cast<int>(result.source_element.size());
-            result.mesh.vertices.insert(result.mesh.vertices.end(), e.mesh.vertices.begin(), e.mesh.vertices.end());
-            for (const Tri& f : e.mesh.faces) {
-                result.mesh.faces.push_back(f + Tri::Constant(off));
-                result.element_of_face.push_back(eid);
-            }
+            final_meshes.push_back(&e.mesh);
             result.source_element.push_back(e.source);
             if (quilt::is_closed_oriented(e.mesh)) ++report_.elements_closed;
         }
+        ElementMesh out = concatenate(final_meshes);
+        result.mesh = std::move(out.mesh);
+        result.element_of_face = std::move(out.element_of_face);
         stage_seconds_["finish"] += seconds_since(t0);
         for (const auto& [why, n] : failure_reasons_) opt_.reporter.debug("stitch failed " + std::to_string(n) + " times: " + why);
 

@@ -92,17 +92,5 @@ Mesh transformed(const Mesh& mesh, const Eigen::Matrix3d& rot, const Vec3& trans
     return m;
 }
 
-Combined combine(const std::vector<Mesh>& parts) {
-    Combined c;
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-        const int offset = static_cast<int>(c.mesh.vertices.size());
-        c.mesh.vertices.insert(c.mesh.vertices.end(), parts[k].vertices.begin(), parts[k].vertices.end());
-        for (const Tri& f : parts[k].faces) {
-            c.mesh.faces.push_back(f + Tri::Constant(offset));
-            c.element_of_face.push_back(static_cast<int>(k));
-        }
-    }
-    return c;
-}
 
 }  // namespace meshquilt::test::isect

@@ -30,11 +30,8 @@ Mesh cuboid(const Vec3& lo, const Vec3& hi);
 /// `mesh` with every vertex mapped to rotation * v + translation.
 Mesh transformed(const Mesh& mesh, const Eigen::Matrix3d& rotation, const Vec3& translation);
 
-/// Several meshes in one, element k being parts[k].
-struct Combined {
-    Mesh mesh;
-    std::vector<int> element_of_face;
-};
-Combined combine(const std::vector<Mesh>& parts);
+/// Several meshes in one, element k being parts[k] (the library's concatenate).
+using Combined = ElementMesh;
+inline Combined combine(const std::vector<Mesh>& parts) { return concatenate(parts); }
 
 }  // namespace meshquilt::test::isect
