@@ -9,6 +9,7 @@
 #include "meshquilt/quilt.h"
 #include "quilt/kernel.h"
 #include "quilt/match.h"
+#include "quilt/swatch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -35,101 +36,22 @@ Mesh normalize_swatch(const Mesh& swatch) {
 
 namespace {
 
+using quilt::area_centroid;
+using quilt::mesh_area;
+using quilt::num;
+using quilt::SwatchData;
+using quilt::translated;
+using quilt::window_density;
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// A number for messages: 6 significant digits, no trailing zeros.
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
-
-double mesh_area(const Mesh& m) {
-    double a = 0.0;
-    for (std::size_t f = 0; f < m.faces.size(); ++f) a += face_area(m, f);
-    return a;
-}
 
 /// Largest output we attempt, in faces (about 2-3 GB of memory and some minutes).
 constexpr double kMaxOutputFaces = 20e6;
 
 /// Inset of the density window, as a fraction of the swatch's sides.
 constexpr double kDensityInset = 0.15;
-
-/// Area of the faces whose centroid lies in [x0, x1] x [y0, y1], per unit area of that window.
-double window_density(const Mesh& m, double x0, double y0, double x1, double y1) {
-    double a = 0.0;
-    for (std::size_t f = 0; f < m.faces.size(); ++f) {
-        const Vec3 c = face_centroid(m, f);
-        if (c.x() < x0 || c.x() > x1 || c.y() < y0 || c.y() > y1) continue;
-        a += face_area(m, f);
-    }
-    return a / ((x1 - x0) * (y1 - y0));
-}
-
-Vec3 area_centroid(const Mesh& m) {
-    Vec3 c = Vec3::Zero();
-    double total = 0.0;
-    for (std::size_t f = 0; f < m.faces.size(); ++f) {
-        const double a = face_area(m, f);
-        c += a * face_centroid(m, f);
-        total += a;
-    }
-    return total > 0 ? Vec3(c / total) : Vec3(bounding_box(m).min);
-}
-
-Mesh translated(const Mesh& m, const Vec3& t) {
-    Mesh out = m;
-    for (Vec3& v : out.vertices) v += t;
-    return out;
-}
-
-/// The swatch split into elements, in its own frame.
-struct SwatchData {
-    Mesh mesh;
-    std::vector<Mesh> elements;
-    std::vector<char> element_closed;
-    double mean_edge = 0.0;
-    double area = 0.0;
-    Box3 box;
-};
-
-SwatchData prepare_swatch(const Mesh& input) {
-    SwatchData s;
-    s.mesh = normalize_swatch(input);
-    s.box = bounding_box(s.mesh);
-    int count = 0;
-    const std::vector<int> comp = connected_components(s.mesh, &count);
-    std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(count));
-    for (std::size_t f = 0; f < comp.size(); ++f) faces_of[static_cast<std::size_t>(comp[f])].push_back(static_cast<int>(f));
-    for (const auto& fl : faces_of) {
-        Mesh e;
-        std::map<int, int> map;
-        for (int f : fl) {
-            Tri t;
-            for (int k = 0; k < 3; ++k) {
-                const int v = s.mesh.faces[static_cast<std::size_t>(f)][k];
-                auto it = map.find(v);
-                if (it == map.end()) {
-                    it = map.emplace(v, static_cast<int>(e.vertices.size())).first;
-                    e.vertices.push_back(s.mesh.vertices[static_cast<std::size_t>(v)]);
-                }
-                t[k] = it->second;
-            }
-            e.faces.push_back(t);
-        }
-        s.element_closed.push_back(quilt::is_closed_oriented(e));
-        s.elements.push_back(std::move(e));
-    }
-    double len = 0.0;
-    for (const Tri& f : s.mesh.faces)
-        for (int k = 0; k < 3; ++k) len += (s.mesh.vertices[f[k]] - s.mesh.vertices[f[(k + 1) % 3]]).norm();
-    s.mean_edge = len / (3.0 * static_cast<double>(std::max<std::size_t>(1, s.mesh.faces.size())));
-    s.area = mesh_area(s.mesh);
-    return s;
-}
 
 /// Output grid with a margin of cells around the footprint, so that placements near the border
 /// keep track of what they cover.
@@ -175,7 +97,7 @@ public:
     PlanarQuilter(const Mesh& swatch, const PlanarQuiltOptions& o) : opt_(o) {
         validate_options();
         auto t0 = Clock::now();
-        sw_ = prepare_swatch(swatch);
+        sw_ = quilt::prepare_swatch(swatch);
         const ThinAxis thin = thin_axis_of(bounding_box(swatch));
         if (!thin.is_thin)
             throw InvalidInput("swatch has no thin axis: its smallest extent is more than half the middle one; a swatch must be a slab");
@@ -281,36 +203,6 @@ private:
         return ids;
     }
 
-    /// Beyond the paper: the best whole-cell translation is refined by translation-only ICP over the
-    /// sub-patch samples (at most half a cell), so that lattice-like swatches (chain mail) line up
-    /// exactly instead of within half a cell; element deformation then has less to correct.
-    Vec2 refine_translation(const std::vector<quilt::Sample>& samples, const Vec2& start) const {
-        if (samples.size() < 8) return start;
-        Vec2 t = start;
-        const double reach = 2.0 * params_.metric.unit;
-        const std::size_t step = std::max<std::size_t>(1, samples.size() / 512);
-        for (int it = 0; it < 4; ++it) {
-            Vec2 sum = Vec2::Zero();
-            int n = 0;
-            for (std::size_t k = 0; k < samples.size(); k += step) {
-                const Vec3 p = samples[k].position - Vec3(t.x(), t.y(), 0.0);
-                double score = 0.0;
-                const ClosestHit h = index_.best_match(p, samples[k].normal, params_.metric, &score);
-                if (h.face < 0 || h.distance > reach) continue;
-                sum += Vec2(p.x() - h.point.x(), p.y() - h.point.y());
-                ++n;
-            }
-            if (n < 8) break;
-            Vec2 next = t + sum / n;
-            const Vec2 off = next - start;
-            if (off.norm() > 0.5 * cell_) next = start + off * (0.5 * cell_ / off.norm());
-            const double moved = (next - t).norm();
-            t = next;
-            if (moved < 1e-3 * params_.metric.unit) break;
-        }
-        return t;
-    }
-
     void place_patch(int si, int sj) {
         auto t0 = Clock::now();
         // P_out: k x k cells around the seed.
@@ -333,7 +225,7 @@ private:
         const int ti = static_cast<int>(std::lround(choice.translation.x() / cell_));
         const int tj = static_cast<int>(std::lround(choice.translation.y() / cell_));
         ++phase_count_[{((ti % sx_) + sx_) % sx_, ((tj % sy_) + sy_) % sy_}];
-        const Vec2 t = refine_translation(samples, choice.translation);
+        const Vec2 t = quilt::refine_translation(index_, params_.metric, samples, choice.translation, 0.5 * cell_);
         stage_seconds_["matching"] += seconds_since(t0);
         t0 = Clock::now();
 

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "quilt/swatch.h"
+
+#include "meshquilt/analysis.h"
+#include "meshquilt/quilt.h"
+#include "quilt/kernel.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+namespace meshquilt::quilt {
+
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+double mesh_area(const Mesh& m) {
+    double a = 0.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) a += face_area(m, f);
+    return a;
+}
+
+double window_density(const Mesh& m, double x0, double y0, double x1, double y1) {
+    double a = 0.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const Vec3 c = face_centroid(m, f);
+        if (c.x() < x0 || c.x() > x1 || c.y() < y0 || c.y() > y1) continue;
+        a += face_area(m, f);
+    }
+    return a / ((x1 - x0) * (y1 - y0));
+}
+
+Vec3 area_centroid(const Mesh& m) {
+    Vec3 c = Vec3::Zero();
+    double total = 0.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const double a = face_area(m, f);
+        c += a * face_centroid(m, f);
+        total += a;
+    }
+    return total > 0 ? Vec3(c / total) : Vec3(bounding_box(m).min);
+}
+
+Mesh translated(const Mesh& m, const Vec3& t) {
+    Mesh out = m;
+    for (Vec3& v : out.vertices) v += t;
+    return out;
+}
+
+
+SwatchData prepare_swatch(const Mesh& input) {
+    SwatchData s;
+    s.mesh = meshquilt::normalize_swatch(input);
+    s.box = bounding_box(s.mesh);
+    int count = 0;
+    const std::vector<int> comp = connected_components(s.mesh, &count);
+    std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(count));
+    for (std::size_t f = 0; f < comp.size(); ++f) faces_of[static_cast<std::size_t>(comp[f])].push_back(static_cast<int>(f));
+    for (const auto& fl : faces_of) {
+        Mesh e;
+        std::map<int, int> map;
+        for (int f : fl) {
+            Tri t;
+            for (int k = 0; k < 3; ++k) {
+                const int v = s.mesh.faces[static_cast<std::size_t>(f)][k];
+                auto it = map.find(v);
+                if (it == map.end()) {
+                    it = map.emplace(v, static_cast<int>(e.vertices.size())).first;
+                    e.vertices.push_back(s.mesh.vertices[static_cast<std::size_t>(v)]);
+                }
+                t[k] = it->second;
+            }
+            e.faces.push_back(t);
+        }
+        s.element_closed.push_back(quilt::is_closed_oriented(e));
+        s.elements.push_back(std::move(e));
+    }
+    double len = 0.0;
+    for (const Tri& f : s.mesh.faces)
+        for (int k = 0; k < 3; ++k) len += (s.mesh.vertices[f[k]] - s.mesh.vertices[f[(k + 1) % 3]]).norm();
+    s.mean_edge = len / (3.0 * static_cast<double>(std::max<std::size_t>(1, s.mesh.faces.size())));
+    s.area = mesh_area(s.mesh);
+    return s;
+}
+
+Vec2 refine_translation(const TriangleIndex& index, const MatchMetric& metric, const std::vector<Sample>& samples,
+                    const Vec2& start, double max_offset) {
+    if (samples.size() < 8) return start;
+    Vec2 t = start;
+    const double reach = 2.0 * metric.unit;
+    const std::size_t step = std::max<std::size_t>(1, samples.size() / 512);
+    for (int it = 0; it < 4; ++it) {
+        Vec2 sum = Vec2::Zero();
+        int n = 0;
+        for (std::size_t k = 0; k < samples.size(); k += step) {
+            const Vec3 p = samples[k].position - Vec3(t.x(), t.y(), 0.0);
+            double score = 0.0;
+            const ClosestHit h = index.best_match(p, samples[k].normal, metric, &score);
+            if (h.face < 0 || h.distance > reach) continue;
+            sum += Vec2(p.x() - h.point.x(), p.y() - h.point.y());
+            ++n;
+        }
+        if (n < 8) break;
+        Vec2 next = t + sum / n;
+        const Vec2 off = next - start;
+        if (off.norm() > max_offset) next = start + off * (max_offset / off.norm());
+        const double moved = (next - t).norm();
+        t = next;
+        if (moved < 1e-3 * metric.unit) break;
+    }
+    return t;
+}
+
+}  // namespace meshquilt::quilt

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#pragma once
+// What the planar and the surface stage share about a swatch and one placement: the swatch split
+// into elements in its own frame, helpers on element meshes, and the translation refinement.
+
+#include "core/triangle_index.h"
+#include "meshquilt/mesh.h"
+#include "quilt/match.h"
+
+#include <string>
+#include <vector>
+
+namespace meshquilt::quilt {
+
+/// The swatch split into elements, in its own frame (see normalize_swatch).
+struct SwatchData {
+    Mesh mesh;
+    std::vector<Mesh> elements;
+    std::vector<char> element_closed;
+    double mean_edge = 0.0;
+    double area = 0.0;
+    Box3 box;
+};
+
+SwatchData prepare_swatch(const Mesh& input);
+
+/// A number for messages: 6 significant digits, no trailing zeros.
+std::string num(double v);
+
+double mesh_area(const Mesh& m);
+/// Area-weighted centroid of the faces (the box corner for a mesh without area).
+Vec3 area_centroid(const Mesh& m);
+Mesh translated(const Mesh& m, const Vec3& t);
+
+/// Area of the faces whose centroid lies in [x0, x1] x [y0, y1], per unit area of that window.
+double window_density(const Mesh& m, double x0, double y0, double x1, double y1);
+
+/// Beyond the paper: the best whole-cell translation is refined by translation-only ICP over the
+/// sub-patch samples (moving at most `max_offset`), so that lattice-like swatches (chain mail) line
+/// up exactly instead of within half a cell; element deformation then has less to correct.
+Vec2 refine_translation(const TriangleIndex& swatch, const MatchMetric& metric, const std::vector<Sample>& samples,
+                        const Vec2& start, double max_offset);
+
+}  // namespace meshquilt::quilt
