@@ -22,6 +22,7 @@ struct Command {
 
 void add_inspect_command(CLI::App& root, std::vector<Command>& commands);
 void add_plane_command(CLI::App& root, std::vector<Command>& commands);
+void add_surface_command(CLI::App& root, std::vector<Command>& commands);
 
 /// Global flags, set by main() before any command runs.
 struct GlobalFlags {

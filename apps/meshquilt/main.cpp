@@ -5,6 +5,7 @@
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -101,8 +102,20 @@ int main(int argc, char** argv) {
     std::vector<Command> commands;
     add_plane_command(root, commands);
     add_inspect_command(root, commands);
+    add_surface_command(root, commands);
+    // `meshquilt BASE SWATCH ...` is `meshquilt surface BASE SWATCH ...`: the first argument that is
+    // not a flag, if it names no command, starts the main job.
+    std::vector<std::string> args(argv + 1, argv + argc);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (!args[i].empty() && args[i][0] == '-') continue;
+        bool known = false;
+        for (const auto& c : commands) known = known || c.app->check_name(args[i]);
+        if (!known && args[i] != "help") args.insert(args.begin() + static_cast<std::ptrdiff_t>(i), "surface");
+        break;
+    }
+    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
     try {
-        root.parse(argc, argv);
+        root.parse(args);
     } catch (const CLI::ParseError& e) {
         const int code = root.exit(e);
         return code == 0 ? 0 : 2;  // usage errors exit with 2

@@ -40,6 +40,9 @@ struct WriteOptions {
     std::vector<int> element_of_face;
     /// Written as a header comment where the format allows (OBJ, PLY); may be empty.
     std::string comment;
+    /// OBJ group name per element id, overriding `element_<id>` where given and not empty (e.g.
+    /// "base"); names must not contain whitespace.
+    std::vector<std::string> group_names;
 };
 
 /// Writes by extension (.obj, .ply, .stl), atomically.

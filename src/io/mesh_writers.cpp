@@ -68,8 +68,14 @@ std::string format_obj(const Mesh& mesh, const WriteOptions& options) {
     for (std::size_t i = 0; i < order.size(); ++i) {
         const std::size_t f = order[i];
         if (!element.empty() && (i == 0 || element[f] != element[order[i - 1]])) {
-            out += "o element_";
-            append_int(out, element[f]);
+            const auto id = static_cast<std::size_t>(element[f]);
+            if (id < options.group_names.size() && !options.group_names[id].empty()) {
+                out += "o ";
+                out += options.group_names[id];
+            } else {
+                out += "o element_";
+                append_int(out, element[f]);
+            }
             out += '\n';
         }
         const Tri& t = mesh.faces[f];

@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// meshquilt [surface] BASE SWATCH -o OUT [--scale S | --swatch-size L] [--height H] [--field FIELD]
+//           [--symmetry N] [--seed N] [--with-base] [--embed normal] [--report REPORT.json]
+
+#include "cli.h"
+#include "meshquilt/errors.h"
+#include "meshquilt/io.h"
+#include "meshquilt/surface.h"
+#include "report_json.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+namespace meshquilt::cli {
+
+namespace {
+struct SurfaceArgs {
+    std::string base, swatch, output, report, field, embed = "normal";
+    double scale = 0.08, swatch_size = 0.0, height = 0.0;
+    int symmetry = 0;
+    std::uint64_t seed = 1;
+    bool with_base = false, repair = false;
+};
+
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+}
+}  // namespace
+
+void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
+    auto a = std::make_shared<SurfaceArgs>();
+    CLI::App* app = root.add_subcommand(
+        "surface", "Cover a base mesh with a geometric texture grown from a swatch (the default command: `meshquilt BASE SWATCH -o OUT`)");
+    app->add_option("base", a->base, "Base mesh (OBJ, PLY, STL, OFF) to decorate; it is never changed")->required();
+    app->add_option("swatch", a->swatch, "Swatch mesh: a slab of separate elements")->required();
+    app->add_option("-o,--output", a->output, "Output mesh (.obj with one group per element, .ply, .stl)")->required();
+    auto* scale = app->add_option("--scale", a->scale, "Swatch footprint's longer side as a fraction of the base's bounding-box diagonal")
+                      ->capture_default_str();
+    app->add_option("--swatch-size", a->swatch_size, "Swatch footprint's longer side in base units (instead of --scale)")->excludes(scale);
+    app->add_option("--height", a->height, "Shell height in base units (default: the swatch's thickness at that scale)");
+    app->add_option("--field", a->field, "Guidance field file (face/vertex vectors or strokes; see docs/surface.md)");
+    app->add_option("--symmetry", a->symmetry, "Rotational symmetry of the swatch for the automatic field: 1, 2, 4, 6 (default: detect)");
+    app->add_option("--seed", a->seed, "Random seed: same inputs and seed give identical output")->capture_default_str();
+    app->add_flag("--with-base", a->with_base, "Also write the base, as the group 'base'");
+    app->add_option("--embed", a->embed, "Embedding of the texture: 'normal' (displacement along interpolated normals)")
+        ->check(CLI::IsMember({"normal"}))
+        ->capture_default_str();
+    app->add_option("--report", a->report, "Write a JSON quality report here");
+    app->add_flag("--repair", a->repair, "Repair safe input problems (degenerate faces, duplicate vertices) and report them");
+    commands.push_back({app, [a]() {
+        const auto t0 = std::chrono::steady_clock::now();
+        const Mesh base = load_input(a->base, a->repair, false);
+        const Mesh swatch = load_input(a->swatch, a->repair, true);
+        SurfaceQuiltOptions o;
+        o.scale = a->scale;
+        o.swatch_size = a->swatch_size;
+        o.height = a->height;
+        o.symmetry = a->symmetry;
+        o.seed = a->seed;
+        if (!a->field.empty()) o.field = read_guidance_field(a->field);
+        o.reporter = make_cli_reporter();
+        SurfaceQuiltResult r;
+        try {
+            r = quilt_surface(base, swatch, o);
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(a->base + " + " + a->swatch + ": " + e.what());
+        }
+        finish_progress();
+        for (const auto& w : r.warnings) std::cerr << "meshquilt: warning: " << w << '\n';
+        Mesh out = r.mesh;
+        WriteOptions wo;
+        wo.element_of_face = r.element_of_face;
+        if (a->with_base) {
+            const int id = r.report.elements;
+            const int offset = static_cast<int>(out.vertices.size());
+            out.vertices.insert(out.vertices.end(), base.vertices.begin(), base.vertices.end());
+            for (const Tri& t : base.faces) {
+                out.faces.push_back(t + Tri::Constant(offset));
+                wo.element_of_face.push_back(id);
+            }
+            wo.group_names.assign(static_cast<std::size_t>(id) + 1, "");
+            wo.group_names.back() = "base";
+        }
+        wo.comment = "meshquilt " + a->base + " " + a->swatch +
+                     (a->swatch_size > 0 ? " --swatch-size " + num(a->swatch_size) : " --scale " + num(a->scale)) +
+                     (a->height > 0 ? " --height " + num(a->height) : "") + " --seed " + std::to_string(a->seed);
+        write_mesh(a->output, out, wo);
+        if (!a->report.empty()) {
+            const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            nlohmann::json j = report_to_json(r.report, total);
+            const SurfaceQualityReport& s = r.surface;
+            j["surface"] = {{"base_faces", s.base_faces},
+                            {"base_faces_processed", s.base_faces_processed},
+                            {"coverage", s.base_faces ? static_cast<double>(s.base_faces_processed) / s.base_faces : 0.0},
+                            {"patches_shrunk", s.patches_shrunk},
+                            {"frozen_elements_seen", s.frozen_elements_seen},
+                            {"symmetry", s.symmetry},
+                            {"base_units_per_swatch_unit", s.base_scale},
+                            {"region_density_min", s.region_density_min},
+                            {"region_density_max", s.region_density_max},
+                            {"regions", s.regions},
+                            {"base_flipped_components", s.base_flipped_components}};
+            write_file_atomic(a->report, j.dump(2) + "\n");
+        }
+        if (!global_flags().quiet)
+            std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces -> " << a->output << '\n';
+        return 0;
+    }});
+}
+
+}  // namespace meshquilt::cli

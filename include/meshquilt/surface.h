@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#pragma once
+/// \file surface.h
+/// Surface mesh quilting (Zhou et al. 2006, Section 3.1): cover an arbitrary triangle mesh (the
+/// base) with a geometric texture grown from a swatch. The planar kernel runs in local patches of
+/// the base flattened with LSCM, oriented by a direction field; output vertices are stored relative
+/// to the base and embedded by normal displacement.
+
+#include "meshquilt/mesh.h"
+#include "meshquilt/quilt.h"
+#include "meshquilt/reporter.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace meshquilt {
+
+/// A user's guidance field (see docs/surface.md for the file format read by read_guidance_field).
+/// Directions are tangent vectors in base coordinates; they are projected onto the faces. Their
+/// length is the local scale factor (1: the scale given by the options). Faces without a value
+/// get one by smooth interpolation.
+struct GuidanceField {
+    struct FaceValue {
+        int face = -1;
+        Vec3 vector = Vec3::Zero();
+    };
+    struct VertexValue {
+        int vertex = -1;
+        Vec3 vector = Vec3::Zero();
+    };
+    std::vector<FaceValue> faces;
+    std::vector<VertexValue> vertices;
+    /// Polylines drawn on (or near) the surface: the faces nearest their points are constrained to
+    /// the stroke's direction there, with scale 1 (Lapped Textures, Praun et al. 2000).
+    std::vector<std::vector<Vec3>> strokes;
+    [[nodiscard]] bool empty() const { return faces.empty() && vertices.empty() && strokes.empty(); }
+};
+
+/// Reads a field file. \throw IoError unreadable; InvalidInput (with file:line) malformed
+GuidanceField read_guidance_field(const std::string& path);
+
+struct SurfaceQuiltOptions {
+    /// Swatch footprint's longer side as a fraction of the base's bounding-box diagonal.
+    double scale = 0.08;
+    /// Swatch footprint's longer side in base units; > 0 overrides `scale`.
+    double swatch_size = 0.0;
+    /// Shell height in base units; <= 0: the swatch's thickness at the chosen scale.
+    double height = 0.0;
+    /// Rotational symmetry of the swatch for the automatic field (1, 2, 4 or 6); 0: detect.
+    int symmetry = 0;
+    GuidanceField field;
+    std::uint64_t seed = 1;
+    double lambda = 1.0;
+    double mu = 1.0;
+    double tolerance = 0.1;
+    Reporter reporter;
+};
+
+/// Where an output vertex lives: a triangle of the (internally refined) base, barycentric
+/// coordinates of its orthogonal projection, and its height above the base along the interpolated
+/// vertex normal.
+struct SurfacePoint {
+    int face = -1;
+    Vec3 bary = Vec3::Zero();
+    double height = 0.0;
+};
+
+struct SurfaceQualityReport {
+    int base_faces = 0;            ///< faces of the base as used (after refinement)
+    int base_faces_processed = 0;  ///< faces the synthesis reached (all, on success)
+    int patches_shrunk = 0;        ///< patches made smaller because LSCM distorted area by more than 4
+    int frozen_elements_seen = 0;  ///< old elements reaching beyond a patch, treated as obstacles
+    int symmetry = 0;              ///< N of the N-direction field used
+    double base_scale = 0.0;       ///< base units per swatch unit
+    double swatch_density = 0.0;   ///< element area per footprint area in the swatch
+    /// Element area per base area over a partition of the surface into regions of about 4 swatch
+    /// footprints, divided by the swatch's: smallest and largest over regions.
+    double region_density_min = 0.0;
+    double region_density_max = 0.0;
+    int regions = 0;
+    int base_flipped_components = 0;  ///< closed inside-out components flipped for the synthesis
+};
+
+struct SurfaceQuiltResult {
+    Mesh mesh;                          ///< all elements embedded in 3D; faces of one element contiguous
+    std::vector<int> element_of_face;
+    std::vector<int> source_element;    ///< per element: its swatch element
+    std::vector<SurfacePoint> anchors;  ///< per vertex of `mesh`
+    Mesh base;                          ///< the base as used (welded, oriented, refined); anchors refer to it
+    QualityReport report;
+    SurfaceQualityReport surface;
+    std::vector<std::string> warnings;
+};
+
+/// Surface mesh quilting (Section 3.1). The base must be a valid mesh (see validate); it is never
+/// changed: welding, orientation fixes and refinement happen on a copy.
+/// \throw InvalidInput bad options, empty base, swatch without thin axis, absurd scale
+/// \throw Cancelled    the reporter asked to stop
+SurfaceQuiltResult quilt_surface(const Mesh& base, const Mesh& swatch, const SurfaceQuiltOptions& options);
+
+}  // namespace meshquilt

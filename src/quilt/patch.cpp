@@ -1,0 +1,269 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "quilt/patch.h"
+
+#include "core/triangle_index.h"
+#include "meshquilt/errors.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace meshquilt::quilt {
+
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SM = CGAL::Surface_mesh<K::Point_3>;
+namespace SMP = CGAL::Surface_mesh_parameterization;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+SM to_surface_mesh(const Mesh& m) {
+    SM sm;
+    sm.reserve(static_cast<SM::size_type>(m.vertices.size()), static_cast<SM::size_type>(3 * m.faces.size() / 2),
+               static_cast<SM::size_type>(m.faces.size()));
+    for (const Vec3& v : m.vertices) sm.add_vertex(K::Point_3(v.x(), v.y(), v.z()));
+    for (const Tri& t : m.faces) {
+        const SM::Face_index f = sm.add_face(SM::Vertex_index(static_cast<SM::size_type>(t[0])), SM::Vertex_index(static_cast<SM::size_type>(t[1])),
+                                             SM::Vertex_index(static_cast<SM::size_type>(t[2])));
+        if (f == SM::null_face()) throw BackendFailure("base mesh: a face could not be added to the halfedge structure (non-manifold?)");
+    }
+    return sm;
+}
+}  // namespace
+
+std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3>>& nb, const std::vector<Vec3>& centroids, int seed,
+                           double radius) {
+    std::vector<int> region;
+    // Sparse per-call state: faces and vertices touched, in maps keyed by index.
+    std::unordered_map<int, double> dist;
+    std::unordered_map<int, int> tries;
+    std::unordered_set<int> in;
+    std::unordered_map<int, int> vcount;
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    queue.emplace(0.0, seed);
+    dist[seed] = 0.0;
+    while (!queue.empty()) {
+        const auto [d, f] = queue.top();
+        queue.pop();
+        if (in.count(f) || d > radius) continue;
+        const auto fi = static_cast<std::size_t>(f);
+        int shared_edges = 0, shared_vertices = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int g = nb[fi][static_cast<std::size_t>(k)];
+            if (g >= 0 && in.count(g)) ++shared_edges;
+            auto it = vcount.find(mesh.faces[fi][k]);
+            if (it != vcount.end() && it->second > 0) ++shared_vertices;
+        }
+        const bool ok = region.empty() || (shared_edges == 1 && shared_vertices == 2) || (shared_edges == 2 && shared_vertices == 3);
+        if (!ok) {
+            ++tries[f];
+            continue;
+        }
+        in.insert(f);
+        region.push_back(f);
+        for (int k = 0; k < 3; ++k) ++vcount[mesh.faces[fi][k]];
+        for (int g : nb[fi]) {
+            if (g < 0 || in.count(g) || tries[g] > 3) continue;
+            const double nd = d + (centroids[static_cast<std::size_t>(g)] - centroids[fi]).norm();
+            auto it = dist.find(g);
+            // Re-queue also at equal distance: a face refused earlier may fit now.
+            if (it == dist.end() || nd <= it->second) {
+                dist[g] = std::min(nd, it == dist.end() ? nd : it->second);
+                queue.emplace(dist[g], g);
+            }
+        }
+    }
+    return region;
+}
+
+Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent) {
+    SM sm = to_surface_mesh(mesh);
+    PMP::split_long_edges(edges(sm), max_length, sm);
+    Mesh out;
+    out.vertices.reserve(sm.number_of_vertices());
+    for (SM::Vertex_index v : sm.vertices()) {
+        const K::Point_3& p = sm.point(v);
+        out.vertices.emplace_back(p.x(), p.y(), p.z());
+    }
+    for (SM::Face_index f : sm.faces()) {
+        Tri t;
+        int k = 0;
+        for (SM::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[k++] = static_cast<int>(v.idx());
+        out.faces.push_back(t);
+    }
+    if (parent) {
+        // New faces lie inside input faces; the closest input face to a centroid is its parent.
+        const TriangleIndex index(mesh);
+        parent->resize(out.faces.size());
+        for (std::size_t f = 0; f < out.faces.size(); ++f) (*parent)[f] = index.closest(face_centroid(out, f)).face;
+    }
+    return out;
+}
+
+bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch) {
+    FlatPatch p;
+    p.faces = faces;
+    std::unordered_map<int, int> local;
+    Mesh sub;
+    for (int f : faces) {
+        Tri t;
+        for (int k = 0; k < 3; ++k) {
+            const int v = mesh.faces[static_cast<std::size_t>(f)][k];
+            auto it = local.find(v);
+            if (it == local.end()) {
+                it = local.emplace(v, static_cast<int>(p.vertices.size())).first;
+                p.vertices.push_back(v);
+                sub.vertices.push_back(mesh.vertices[static_cast<std::size_t>(v)]);
+            }
+            t[k] = it->second;
+        }
+        p.local.push_back(t);
+        sub.faces.push_back(t);
+    }
+    p.uv.assign(p.vertices.size(), Vec2::Zero());
+    if (faces.size() == 1) {
+        // One triangle: its own plane.
+        const Vec3 a = sub.vertices[0], b = sub.vertices[1], c = sub.vertices[2];
+        const Vec3 e1 = (b - a).normalized(), n = (b - a).cross(c - a).normalized(), e2 = n.cross(e1);
+        p.uv[1] = Vec2((b - a).norm(), 0.0);
+        p.uv[2] = Vec2((c - a).dot(e1), (c - a).dot(e2));
+    } else {
+        SM sm = to_surface_mesh(sub);
+        const auto border = PMP::longest_border(sm).first;
+        if (border == SM::null_halfedge()) return false;
+        auto uvmap = sm.add_property_map<SM::Vertex_index, K::Point_2>("v:uv").first;
+        const SMP::Error_code err = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SM>(), border, uvmap);
+        if (err != SMP::OK) return false;
+        for (SM::Vertex_index v : sm.vertices()) p.uv[v.idx()] = Vec2(uvmap[v].x(), uvmap[v].y());
+    }
+    // Scale to the 3D area; mirror if LSCM turned the patch over.
+    double flat = 0.0, area = 0.0;
+    for (std::size_t f = 0; f < p.local.size(); ++f) {
+        const Tri& t = p.local[f];
+        const Vec2 e1 = p.uv[static_cast<std::size_t>(t[1])] - p.uv[static_cast<std::size_t>(t[0])];
+        const Vec2 e2 = p.uv[static_cast<std::size_t>(t[2])] - p.uv[static_cast<std::size_t>(t[0])];
+        flat += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+        area += face_area(sub, f);
+    }
+    if (!std::isfinite(flat) || flat == 0.0 || area <= 0.0) return false;
+    const double s = std::sqrt(area / std::fabs(flat));
+    for (Vec2& q : p.uv) q = Vec2(q.x() * s, (flat < 0 ? -q.y() : q.y()) * s);
+    for (const Vec2& q : p.uv)
+        if (!q.allFinite()) return false;
+    *patch = std::move(p);
+    return true;
+}
+
+double area_distortion(const Mesh& mesh, const FlatPatch& p) {
+    std::vector<std::pair<double, double>> ratio;  // (flat / 3D, 3D area)
+    double total = 0.0;
+    for (std::size_t f = 0; f < p.local.size(); ++f) {
+        const Tri& t = p.local[f];
+        const Vec2 e1 = p.uv[static_cast<std::size_t>(t[1])] - p.uv[static_cast<std::size_t>(t[0])];
+        const Vec2 e2 = p.uv[static_cast<std::size_t>(t[2])] - p.uv[static_cast<std::size_t>(t[0])];
+        const double a = face_area(mesh, static_cast<std::size_t>(p.faces[f]));
+        if (a <= 0) continue;
+        const double flat = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+        ratio.emplace_back(flat / a, a);
+        total += a;
+    }
+    if (ratio.empty()) return 1.0;
+    std::sort(ratio.begin(), ratio.end());
+    auto quantile = [&](double q) {
+        double acc = 0.0;
+        for (const auto& [r, a] : ratio) {
+            acc += a;
+            if (acc >= q * total) return r;
+        }
+        return ratio.back().first;
+    };
+    const double lo = quantile(0.02), hi = quantile(0.98);
+    if (lo <= 0) return std::numeric_limits<double>::infinity();  // folded faces
+    return hi / lo;
+}
+
+PatchLocator::PatchLocator(const FlatPatch& patch) : patch_(patch) {
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec2& q : patch.uv) {
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+    }
+    const double extent = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-12});
+    const double n = std::max(1.0, std::sqrt(static_cast<double>(patch.local.size())));
+    cell_ = extent / n;
+    origin_ = lo;
+    nx_ = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / cell_)) + 1);
+    ny_ = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell_)) + 1);
+    bucket_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
+    for (std::size_t f = 0; f < patch.local.size(); ++f) {
+        Vec2 a = patch.uv[static_cast<std::size_t>(patch.local[f][0])], b = a;
+        for (int k = 1; k < 3; ++k) {
+            a = a.cwiseMin(patch.uv[static_cast<std::size_t>(patch.local[f][k])]);
+            b = b.cwiseMax(patch.uv[static_cast<std::size_t>(patch.local[f][k])]);
+        }
+        const int i0 = std::clamp(static_cast<int>((a.x() - origin_.x()) / cell_), 0, nx_ - 1);
+        const int i1 = std::clamp(static_cast<int>((b.x() - origin_.x()) / cell_), 0, nx_ - 1);
+        const int j0 = std::clamp(static_cast<int>((a.y() - origin_.y()) / cell_), 0, ny_ - 1);
+        const int j1 = std::clamp(static_cast<int>((b.y() - origin_.y()) / cell_), 0, ny_ - 1);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) bucket_[static_cast<std::size_t>(j * nx_ + i)].push_back(static_cast<int>(f));
+    }
+}
+
+PatchLocator::Hit PatchLocator::locate(const Vec2& p, double reach) const {
+    auto bary_of = [&](int f) {
+        const Tri& t = patch_.local[static_cast<std::size_t>(f)];
+        const Vec2 a = patch_.uv[static_cast<std::size_t>(t[0])], b = patch_.uv[static_cast<std::size_t>(t[1])],
+                   c = patch_.uv[static_cast<std::size_t>(t[2])];
+        const double det = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+        if (det == 0.0) return Vec3(Vec3::Constant(-1e30));
+        const Vec2 d = p - a;
+        const double l1 = (d.x() * (c - a).y() - d.y() * (c - a).x()) / det;
+        const double l2 = ((b - a).x() * d.y() - (b - a).y() * d.x()) / det;
+        return Vec3(1.0 - l1 - l2, l1, l2);
+    };
+    const int ci = static_cast<int>(std::floor((p.x() - origin_.x()) / cell_));
+    const int cj = static_cast<int>(std::floor((p.y() - origin_.y()) / cell_));
+    Hit best;
+    double best_out = std::numeric_limits<double>::infinity();
+    const int rings = std::max(0, static_cast<int>(std::ceil(reach / cell_)));
+    for (int r = 0; r <= rings; ++r) {
+        for (int j = cj - r; j <= cj + r; ++j)
+            for (int i = ci - r; i <= ci + r; ++i) {
+                if (std::max(std::abs(i - ci), std::abs(j - cj)) != r) continue;
+                if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+                for (int f : bucket_[static_cast<std::size_t>(j * nx_ + i)]) {
+                    const Vec3 b = bary_of(f);
+                    const double out = -std::min(0.0, b.minCoeff());
+                    if (out == 0.0) return {f, b, true};
+                    if (out < best_out) {
+                        best_out = out;
+                        best = {f, b, false};
+                    }
+                }
+            }
+        // A containing face would have been found in ring 0; nearest faces are found in the first
+        // rings that hold any face.
+        if (best.local_face >= 0 && r >= 1) break;
+    }
+    if (best.local_face < 0) return best;
+    // Distance check: the point reconstructed from clamped coordinates.
+    const Tri& t = patch_.local[static_cast<std::size_t>(best.local_face)];
+    Vec3 cb = best.bary.cwiseMax(0.0);
+    cb /= cb.sum();
+    const Vec2 q = cb[0] * patch_.uv[static_cast<std::size_t>(t[0])] + cb[1] * patch_.uv[static_cast<std::size_t>(t[1])] +
+                   cb[2] * patch_.uv[static_cast<std::size_t>(t[2])];
+    if ((q - p).norm() > reach) return {};
+    return best;
+}
+
+}  // namespace meshquilt::quilt

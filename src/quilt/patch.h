@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#pragma once
+// Local patches of a base mesh for surface quilting (Zhou et al. 2006, Section 3.1): a disc grown
+// around a seed triangle, flattened with LSCM (CGAL Surface_mesh_parameterization), and point
+// location in the flattened patch.
+
+#include "meshquilt/mesh.h"
+
+#include <array>
+#include <vector>
+
+namespace meshquilt::quilt {
+
+/// Faces around `seed` within `radius` (shortest paths between face centroids), grown breadth
+/// first in order of distance; a face joins only if the region stays a topological disc (it shares
+/// one edge and brings one new vertex, or shares two edges), so LSCM can flatten it.
+std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3>>& neighbours,
+                           const std::vector<Vec3>& centroids, int seed, double radius);
+
+/// Split every edge longer than `max_length` (CGAL::Polygon_mesh_processing::split_long_edges); the
+/// surface does not move. `parent` receives, per new face, a face of the input it lies in.
+Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent);
+
+/// A disc of the base flattened by LSCM.
+struct FlatPatch {
+    std::vector<int> faces;     ///< base faces
+    std::vector<int> vertices;  ///< base vertices, in local order
+    std::vector<Tri> local;     ///< faces in local vertex indices
+    std::vector<Vec2> uv;       ///< per local vertex
+};
+
+/// Flattens `faces` (a disc) with LSCM, scaled so that the flat area equals the 3D area, and
+/// orientation kept (counter-clockwise faces stay counter-clockwise). False when CGAL fails.
+bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch);
+
+/// Ratio of the 98th to the 2nd percentile (by area) of flat-to-3D area ratios over the patch.
+double area_distortion(const Mesh& mesh, const FlatPatch& patch);
+
+/// Point location in a flattened patch (uniform grid over the flat triangles).
+class PatchLocator {
+public:
+    explicit PatchLocator(const FlatPatch& patch);
+    struct Hit {
+        int local_face = -1;  ///< index into patch.faces
+        Vec3 bary = Vec3::Zero();
+        bool inside = false;  ///< false: the nearest face, with barycentric coordinates extrapolated
+    };
+    /// The face containing `p`, else the nearest face within `reach` (then `inside` is false);
+    /// local_face -1 when nothing is that near.
+    [[nodiscard]] Hit locate(const Vec2& p, double reach) const;
+
+private:
+    const FlatPatch& patch_;
+    Vec2 origin_;
+    double cell_ = 1.0;
+    int nx_ = 1, ny_ = 1;
+    std::vector<std::vector<int>> bucket_;
+};
+
+}  // namespace meshquilt::quilt

@@ -1,0 +1,741 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Surface mesh quilting, Zhou et al. 2006 Section 3.1: the base mesh's triangles are the cells;
+// each step flattens a disc around the most constrained unprocessed triangle with LSCM, runs the
+// planar kernel (matching, correspondences, deformation, merging) in that plane, oriented by a
+// direction field, and stores the resulting vertices relative to the base.
+
+#include "core/intersect.h"
+#include "core/triangle_index.h"
+#include "meshquilt/analysis.h"
+#include "meshquilt/errors.h"
+#include "meshquilt/surface.h"
+#include "quilt/field.h"
+#include "quilt/kernel.h"
+#include "quilt/match.h"
+#include "quilt/patch.h"
+#include "quilt/swatch.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <random>
+#include <unordered_map>
+
+namespace meshquilt {
+
+namespace {
+
+using quilt::area_centroid;
+using quilt::mesh_area;
+using quilt::num;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr double kMaxOutputFaces = 20e6;
+constexpr double kMaxBaseFaces = 4e6;
+constexpr double kMaxDistortion = 4.0;  // Section 3.1: patches distorting area more than this shrink
+
+/// The base as the synthesis uses it: exact duplicate vertices welded, closed inside-out components
+/// flipped, long edges split.
+struct Base {
+    Mesh mesh;
+    std::vector<std::array<int, 3>> nb;
+    std::vector<Vec3> normal;    ///< per vertex (area weighted)
+    std::vector<Vec3> centroid;  ///< per face
+    std::vector<double> area;    ///< per face
+    std::vector<std::vector<int>> vertex_faces;
+    double total_area = 0.0;
+};
+
+Mesh weld(const Mesh& in) {
+    Mesh out;
+    std::map<std::array<double, 3>, int> index;
+    std::vector<int> remap(in.vertices.size(), -1);
+    for (const Tri& t : in.faces)
+        for (int k = 0; k < 3; ++k) {
+            const int v = t[k];
+            if (remap[static_cast<std::size_t>(v)] >= 0) continue;
+            const Vec3& p = in.vertices[static_cast<std::size_t>(v)];
+            auto [it, fresh] = index.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, static_cast<int>(out.vertices.size()));
+            if (fresh) out.vertices.push_back(p);
+            remap[static_cast<std::size_t>(v)] = it->second;
+        }
+    for (const Tri& t : in.faces)
+        out.faces.emplace_back(remap[static_cast<std::size_t>(t[0])], remap[static_cast<std::size_t>(t[1])], remap[static_cast<std::size_t>(t[2])]);
+    return out;
+}
+
+struct SurfElement {
+    std::vector<SurfacePoint> anchors;
+    std::vector<Tri> faces;
+    int source = -1;
+    bool alive = false;
+    int collider_id = -1;
+    std::vector<int> base_faces;  ///< distinct base faces its vertices lie on
+    Mesh embedded;
+};
+
+class SurfaceQuilter {
+public:
+    SurfaceQuilter(const Mesh& base, const Mesh& swatch, const SurfaceQuiltOptions& o) : opt_(o) {
+        auto t0 = Clock::now();
+        validate_options();
+        if (base.faces.empty()) throw InvalidInput("base has no faces");
+        if (swatch.faces.empty()) throw InvalidInput("swatch has no faces");
+        if (!thin_axis_of(bounding_box(swatch)).is_thin)
+            throw InvalidInput("swatch has no thin axis: its smallest extent is more than half the middle one; a swatch must be a slab");
+        sw_ = quilt::prepare_swatch(swatch);
+        index_ = TriangleIndex(sw_.mesh);
+        const double lx = sw_.box.max.x(), ly = sw_.box.max.y();
+        cell_ = std::max(lx, ly) / 24.0;
+        sx_ = static_cast<int>(std::floor(lx / cell_ + 1e-9));
+        sy_ = static_cast<int>(std::floor(ly / cell_ + 1e-9));
+        k_ = std::max(2, static_cast<int>(std::lround(std::min(sx_, sy_) / 3.0)));
+        k_ = std::min({k_, sx_, sy_});
+        params_.metric.lambda = opt_.lambda;
+        params_.metric.unit = sw_.mean_edge;
+        params_.mu = opt_.mu;
+        rng_.seed(opt_.seed);
+        stage_seconds_["prepare swatch"] += seconds_since(t0);
+        t0 = Clock::now();
+        prepare_base(base);
+        stage_seconds_["prepare base"] += seconds_since(t0);
+    }
+
+    SurfaceQuiltResult run() {
+        const std::size_t F = base_.mesh.faces.size();
+        processed_.assign(F, 0);
+        score_.assign(F, 0);
+        elems_on_face_.assign(F, {});
+        face_slot_.assign(F, -1);
+        std::size_t done = 0;
+        const std::size_t max_steps = 4 * F + 16;
+        for (std::size_t step = 0; step < max_steps && done < F; ++step) {
+            const int seed = find_seed();
+            done += place_patch(seed);
+            opt_.reporter.report("quilting", static_cast<double>(done) / static_cast<double>(F));
+        }
+        if (done < F) throw Error(ErrorCode::Internal, "surface quilting did not reach every base triangle");
+        SurfaceQuiltResult result;
+        finish(result);
+        return result;
+    }
+
+private:
+    void validate_options() const {
+        auto bad = [](double v) { return !std::isfinite(v); };
+        if (bad(opt_.scale) || opt_.scale <= 0.0 || opt_.scale > 2.0)
+            throw InvalidInput("scale must be in (0, 2] (a fraction of the base's bounding-box diagonal), got " + num(opt_.scale));
+        if (bad(opt_.swatch_size) || opt_.swatch_size < 0.0) throw InvalidInput("swatch size must be positive, got " + num(opt_.swatch_size));
+        if (bad(opt_.height) || opt_.height < 0.0) throw InvalidInput("height must be positive, got " + num(opt_.height));
+        if (!(opt_.symmetry == 0 || opt_.symmetry == 1 || opt_.symmetry == 2 || opt_.symmetry == 4 || opt_.symmetry == 6))
+            throw InvalidInput("symmetry must be 1, 2, 4 or 6 (or 0 to detect it), got " + std::to_string(opt_.symmetry));
+        if (bad(opt_.lambda) || opt_.lambda <= 0) throw InvalidInput("lambda must be positive");
+        if (bad(opt_.mu) || opt_.mu <= 0) throw InvalidInput("mu must be positive");
+        if (bad(opt_.tolerance) || opt_.tolerance < 0) throw InvalidInput("tolerance must be >= 0");
+    }
+
+    void prepare_base(const Mesh& input) {
+        Mesh m = weld(input);
+        // Closed components that face inwards are flipped (the decoration grows along the normals).
+        const MeshAnalysis an = analyse(m);
+        const std::vector<int> comp = connected_components(m);
+        std::vector<char> flip(an.elements.size(), 0);
+        for (std::size_t e = 0; e < an.elements.size(); ++e)
+            if (an.elements[e].closed && an.elements[e].volume < 0) {
+                flip[e] = 1;
+                ++surface_.base_flipped_components;
+            }
+        if (surface_.base_flipped_components > 0) {
+            for (std::size_t f = 0; f < m.faces.size(); ++f)
+                if (flip[static_cast<std::size_t>(comp[f])]) std::swap(m.faces[f][1], m.faces[f][2]);
+            warnings_.push_back("the base has " + std::to_string(surface_.base_flipped_components) +
+                                " closed component(s) facing inwards; they were flipped so the decoration grows outwards");
+        }
+        if (an.non_manifold_edges > 0 || an.non_manifold_vertices > 0)
+            throw InvalidInput("base is not manifold (" + std::to_string(an.non_manifold_edges) + " non-manifold edges, " +
+                               std::to_string(an.non_manifold_vertices) + " non-manifold vertices); repair it first");
+        const Box3 box = bounding_box(m);
+        diagonal_ = box.size().norm();
+        if (!(diagonal_ > 0)) throw InvalidInput("base has zero extent");
+        const double fp = opt_.swatch_size > 0 ? opt_.swatch_size : opt_.scale * diagonal_;
+        scale_ = fp / std::max(sw_.box.size().x(), sw_.box.size().y());  // base units per swatch unit
+        const double thickness = sw_.box.size().z();
+        height_scale_ = opt_.height > 0 ? opt_.height / std::max(thickness, 1e-300) : 0.0;
+        const double shell = opt_.height > 0 ? opt_.height : thickness * scale_;
+        if (shell > 0.25 * diagonal_)
+            throw InvalidInput("the shell height " + num(shell) + " is more than a quarter of the base's diagonal " + num(diagonal_) +
+                               ": the swatch is too thick for this base at this scale; choose a smaller --scale or --height");
+        // Absurd scales: too many footprints, output or refined faces.
+        const double fp_area = sw_.box.size().x() * sw_.box.size().y() * scale_ * scale_;
+        const double footprints = an.area / fp_area;
+        const double est_faces = footprints * static_cast<double>(sw_.mesh.faces.size());
+        if (est_faces > kMaxOutputFaces)
+            throw InvalidInput("at this scale the base holds about " + std::to_string(static_cast<long long>(footprints)) +
+                               " swatch footprints, about " + std::to_string(static_cast<long long>(est_faces / 1e6)) +
+                               " million output faces (limit " + std::to_string(static_cast<long long>(kMaxOutputFaces / 1e6)) +
+                               " million): choose a larger --scale or --swatch-size");
+
+        // Field on the welded base, before refinement (user indices refer to it).
+        symmetry_ = opt_.symmetry > 0 ? opt_.symmetry : quilt::detect_symmetry(sw_);
+        const auto nb0 = quilt::face_neighbours(m);
+        const quilt::DirectionField field = quilt::compute_field(m, nb0, symmetry_, opt_.field, "field");
+        min_field_scale_ = *std::min_element(field.scale.begin(), field.scale.end());
+
+        // Cells finer than a sixth of the (smallest local) footprint.
+        const double max_edge = fp * min_field_scale_ / 6.0;
+        const double est_refined = an.area / (0.4 * max_edge * max_edge) + static_cast<double>(m.faces.size());
+        if (est_refined > kMaxBaseFaces)
+            throw InvalidInput("the swatch footprint " + num(fp * min_field_scale_) + " is too small for this base (diagonal " + num(diagonal_) +
+                               "): it would take about " + std::to_string(static_cast<long long>(est_refined)) +
+                               " base triangles; choose a larger --scale or --swatch-size");
+        std::vector<int> parent;
+        base_.mesh = quilt::refine_long_edges(m, max_edge, &parent);
+        const std::size_t F = base_.mesh.faces.size();
+        base_.nb = quilt::face_neighbours(base_.mesh);
+        base_.normal = vertex_normals(base_.mesh);
+        base_.centroid.resize(F);
+        base_.area.resize(F);
+        base_.vertex_faces.assign(base_.mesh.vertices.size(), {});
+        for (std::size_t f = 0; f < F; ++f) {
+            base_.centroid[f] = face_centroid(base_.mesh, f);
+            base_.total_area += (base_.area[f] = face_area(base_.mesh, f));
+            for (int k = 0; k < 3; ++k) base_.vertex_faces[static_cast<std::size_t>(base_.mesh.faces[f][k])].push_back(static_cast<int>(f));
+        }
+        direction_.resize(F);
+        local_scale_.resize(F);
+        for (std::size_t f = 0; f < F; ++f) {
+            const int p = parent[f] >= 0 ? parent[f] : 0;
+            direction_[f] = field.direction[static_cast<std::size_t>(p)];
+            local_scale_[f] = field.scale[static_cast<std::size_t>(p)];
+        }
+        surface_.base_faces = static_cast<int>(F);
+        surface_.symmetry = symmetry_;
+        surface_.base_scale = scale_;
+    }
+
+    /// The unprocessed face with the most processed faces around its corners; ties at random.
+    int find_seed() {
+        int best = -1;
+        std::vector<int> ties;
+        for (std::size_t f = 0; f < processed_.size(); ++f) {
+            if (processed_[f]) continue;
+            if (score_[f] > best) {
+                best = score_[f];
+                ties.clear();
+            }
+            if (score_[f] == best) ties.push_back(static_cast<int>(f));
+        }
+        std::uniform_int_distribution<std::size_t> pick(0, ties.size() - 1);
+        return ties[pick(rng_)];
+    }
+
+    void mark_processed(int f) {
+        if (processed_[static_cast<std::size_t>(f)]) return;
+        processed_[static_cast<std::size_t>(f)] = 1;
+        std::vector<int> around;
+        for (int k = 0; k < 3; ++k)
+            for (int g : base_.vertex_faces[static_cast<std::size_t>(base_.mesh.faces[static_cast<std::size_t>(f)][k])]) around.push_back(g);
+        std::sort(around.begin(), around.end());
+        around.erase(std::unique(around.begin(), around.end()), around.end());
+        for (int g : around)
+            if (g != f) ++score_[static_cast<std::size_t>(g)];
+    }
+
+    double height_scale(double local) const { return height_scale_ > 0 ? height_scale_ : scale_ * local; }
+
+    Vec3 embed(const SurfacePoint& sp) const {
+        const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
+        Vec3 p = Vec3::Zero();
+        for (int k = 0; k < 3; ++k) {
+            const auto v = static_cast<std::size_t>(t[k]);
+            p += sp.bary[k] * (base_.mesh.vertices[v] + sp.height * base_.normal[v]);
+        }
+        return p;
+    }
+
+    /// Patch frame: flat coordinates (swatch units, seed centroid at the origin, field along +x).
+    struct Frame {
+        quilt::FlatPatch flat;  ///< uv already in the patch frame
+        double local = 1.0;     ///< field scale at the seed
+    };
+
+    /// Grows and flattens the patch around `seed`, shrinking it while LSCM distorts area too much.
+    bool make_frame(int seed, Frame* frame) {
+        const double local = local_scale_[static_cast<std::size_t>(seed)];
+        const double diag = std::hypot(sx_ * cell_, sy_ * cell_) * scale_ * local;
+        double radius = 1.25 * diag;
+        quilt::FlatPatch flat;
+        bool ok = false;
+        for (int attempt = 0; attempt < 6; ++attempt) {
+            const std::vector<int> faces = quilt::grow_disc(base_.mesh, base_.nb, base_.centroid, seed, radius);
+            if (quilt::flatten_lscm(base_.mesh, faces, &flat)) {
+                ok = true;
+                if (faces.size() <= 1 || quilt::area_distortion(base_.mesh, flat) <= kMaxDistortion) break;
+            }
+            ok = false;
+            radius *= 0.7;
+            if (attempt == 0) ++surface_.patches_shrunk;
+        }
+        if (!ok) {
+            // Last resort: the seed alone (always flat).
+            if (!quilt::flatten_lscm(base_.mesh, {seed}, &flat)) return false;
+        }
+        // Orientation: the N-th power average of the field over faces near the seed, in flat
+        // coordinates, goes to +x. Origin: the seed's centroid.
+        const int N = symmetry_;
+        std::complex<double> sum = 0.0;
+        const Vec3 c0 = base_.centroid[static_cast<std::size_t>(seed)];
+        for (std::size_t lf = 0; lf < flat.faces.size(); ++lf) {
+            const auto f = static_cast<std::size_t>(flat.faces[lf]);
+            if ((base_.centroid[f] - c0).norm() > 0.35 * diag && static_cast<int>(f) != seed) continue;
+            const Tri& t = base_.mesh.faces[f];
+            const Tri& lt = flat.local[lf];
+            const Vec3 e1 = base_.mesh.vertices[static_cast<std::size_t>(t[1])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])];
+            const Vec3 e2 = base_.mesh.vertices[static_cast<std::size_t>(t[2])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])];
+            Eigen::Matrix<double, 3, 2> E;
+            E << e1, e2;
+            const Eigen::Vector2d ab = E.colPivHouseholderQr().solve(direction_[f]);
+            const Vec2 d = ab[0] * (flat.uv[static_cast<std::size_t>(lt[1])] - flat.uv[static_cast<std::size_t>(lt[0])]) +
+                           ab[1] * (flat.uv[static_cast<std::size_t>(lt[2])] - flat.uv[static_cast<std::size_t>(lt[0])]);
+            if (d.norm() == 0.0 || !d.allFinite()) continue;
+            sum += base_.area[f] * std::polar(1.0, N * std::atan2(d.y(), d.x()));
+        }
+        const double angle = std::abs(sum) > 0 ? std::arg(sum) / N : 0.0;
+        // Seed centroid in flat coordinates.
+        Vec2 origin = Vec2::Zero();
+        for (std::size_t lf = 0; lf < flat.faces.size(); ++lf)
+            if (flat.faces[lf] == seed)
+                for (int k = 0; k < 3; ++k) origin += flat.uv[static_cast<std::size_t>(flat.local[lf][k])] / 3.0;
+        const double c = std::cos(-angle), s = std::sin(-angle), inv = 1.0 / (scale_ * local);
+        for (Vec2& q : flat.uv) {
+            const Vec2 d = q - origin;
+            q = Vec2(c * d.x() - s * d.y(), s * d.x() + c * d.y()) * inv;
+        }
+        frame->flat = std::move(flat);
+        frame->local = local;
+        return true;
+    }
+
+    /// Returns the number of faces newly processed.
+    std::size_t place_patch(int seed) {
+        auto t0 = Clock::now();
+        Frame fr;
+        if (!make_frame(seed, &fr)) {
+            mark_processed(seed);
+            return 1;
+        }
+        const quilt::FlatPatch& flat = fr.flat;
+        for (std::size_t lf = 0; lf < flat.faces.size(); ++lf) face_slot_[static_cast<std::size_t>(flat.faces[lf])] = static_cast<int>(lf);
+        const quilt::PatchLocator locator(flat);
+        const double hs = height_scale(fr.local);
+        stage_seconds_["patches"] += seconds_since(t0);
+        t0 = Clock::now();
+
+        // Old elements in the patch frame: whole ones for the kernel, partial ones as obstacles.
+        std::vector<int> near;
+        for (int f : flat.faces)
+            for (int id : elems_on_face_[static_cast<std::size_t>(f)]) near.push_back(id);
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        auto map_point = [&](const SurfacePoint& sp, Vec3* out) {
+            const int slot = face_slot_[static_cast<std::size_t>(sp.face)];
+            if (slot < 0) return false;
+            const Tri& lt = flat.local[static_cast<std::size_t>(slot)];
+            const Vec2 q = sp.bary[0] * flat.uv[static_cast<std::size_t>(lt[0])] + sp.bary[1] * flat.uv[static_cast<std::size_t>(lt[1])] +
+                           sp.bary[2] * flat.uv[static_cast<std::size_t>(lt[2])];
+            *out = Vec3(q.x(), q.y(), sp.height / hs);
+            return true;
+        };
+        std::vector<quilt::OldElement> old;
+        std::vector<Mesh> obstacles;  // mappable triangles of partial elements
+        for (int id : near) {
+            const SurfElement& e = elems_[static_cast<std::size_t>(id)];
+            Mesh m;
+            m.vertices.resize(e.anchors.size());
+            std::vector<char> ok(e.anchors.size(), 0);
+            bool whole = true;
+            for (std::size_t v = 0; v < e.anchors.size(); ++v) {
+                ok[v] = map_point(e.anchors[v], &m.vertices[v]);
+                whole = whole && ok[v];
+            }
+            if (whole) {
+                m.faces = e.faces;
+                old.push_back({id, std::move(m)});
+            } else {
+                ++surface_.frozen_elements_seen;
+                for (const Tri& t : e.faces)
+                    if (ok[static_cast<std::size_t>(t[0])] && ok[static_cast<std::size_t>(t[1])] && ok[static_cast<std::size_t>(t[2])]) m.faces.push_back(t);
+                obstacles.push_back(std::move(m));
+            }
+        }
+        // Occupancy raster in the patch frame (cells of the swatch grid).
+        Occupancy occ;
+        occ.init(flat, cell_);
+        for (const auto& o : old) occ.add(o.mesh);
+        for (const auto& m : obstacles) occ.add(m);
+
+        // Matching (Section 2.4) over whole-cell translations covering P_out around the seed.
+        const int pi0 = -k_ / 2, pj0 = -k_ / 2;
+        const double px0 = pi0 * cell_, py0 = pj0 * cell_, px1 = (pi0 + k_) * cell_, py1 = (pj0 + k_) * cell_;
+        std::vector<quilt::Sample> samples;
+        auto add_samples = [&](const Mesh& m) {
+            if (m.faces.empty()) return;
+            const std::vector<Vec3> n = vertex_normals(m);
+            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                const Vec3& p = m.vertices[v];
+                if (n[v].squaredNorm() > 0 && p.x() >= px0 && p.x() < px1 && p.y() >= py0 && p.y() < py1) samples.push_back({p, n[v]});
+            }
+        };
+        for (const auto& o : old) add_samples(o.mesh);
+        for (const auto& m : obstacles) add_samples(m);
+        std::vector<Vec2> cands;
+        for (int tj = pj0 + k_ - sy_; tj <= pj0; ++tj)
+            for (int ti = pi0 + k_ - sx_; ti <= pi0; ++ti) cands.emplace_back(ti * cell_, tj * cell_);
+        const quilt::MatchChoice choice = quilt::choose_translation(index_, params_.metric, samples, cands, opt_.tolerance, rng_);
+        const int ti = static_cast<int>(std::lround(choice.translation.x() / cell_));
+        const int tj = static_cast<int>(std::lround(choice.translation.y() / cell_));
+        const Vec2 t = quilt::refine_translation(index_, params_.metric, samples, choice.translation, 0.5 * cell_);
+        stage_seconds_["matching"] += seconds_since(t0);
+        t0 = Clock::now();
+
+        // The placed swatch: elements that land wholly on the flattened patch.
+        const Vec3 shift(t.x(), t.y(), 0.0);
+        const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
+        std::vector<quilt::NewElement> fresh;
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
+            const Vec3 c = area_centroid(sw_.elements[e]);
+            if (c.x() < 0 || c.y() < 0 || c.x() >= sx_ * cell_ || c.y() >= sy_ * cell_) continue;
+            Mesh m = quilt::translated(sw_.elements[e], shift);
+            bool inside = true;
+            for (const Vec3& v : m.vertices)
+                if (!locator.locate(v.head<2>(), 0.0).inside) {
+                    inside = false;
+                    break;
+                }
+            if (inside) fresh.push_back({static_cast<int>(e), std::move(m)});
+        }
+        quilt::Overlap overlap;
+        overlap.old_side = [fx0, fy0, fx1, fy1](double x, double y) { return x >= fx0 && x < fx1 && y >= fy0 && y < fy1; };
+        overlap.new_side = [&occ](double x, double y) { return occ.occupied(x, y); };
+        const quilt::PatchPlan plan = quilt::plan_patch(old, fresh, overlap, params_);
+        report_.stitch_failures += plan.stitch_failures;
+        report_.elements_crowded_out += plan.crowding;
+        stage_seconds_["merging"] += seconds_since(t0);
+        t0 = Clock::now();
+
+        apply(plan, flat, locator, hs);
+        stage_seconds_["collisions"] += seconds_since(t0);
+
+        // Faces under the placed footprint are processed (the seed always).
+        std::size_t newly = 0;
+        auto mark = [&](int f) {
+            if (!processed_[static_cast<std::size_t>(f)]) {
+                mark_processed(f);
+                ++newly;
+            }
+        };
+        mark(seed);
+        for (std::size_t lf = 0; lf < flat.faces.size(); ++lf) {
+            Vec2 c = Vec2::Zero();
+            for (int k = 0; k < 3; ++k) c += flat.uv[static_cast<std::size_t>(flat.local[lf][k])] / 3.0;
+            if (c.x() >= fx0 && c.x() < fx1 && c.y() >= fy0 && c.y() < fy1) mark(flat.faces[lf]);
+        }
+        for (int f : flat.faces) face_slot_[static_cast<std::size_t>(f)] = -1;
+        ++report_.patches;
+        ++phase_count_[{((ti % sx_) + sx_) % sx_, ((tj % sy_) + sy_) % sy_}];
+        return newly;
+    }
+
+    /// Which cells of the patch frame hold old geometry (Section 2.5's "already synthesised").
+    struct Occupancy {
+        Vec2 lo;
+        double cell = 1.0;
+        int nx = 0, ny = 0;
+        std::vector<char> on;
+        void init(const quilt::FlatPatch& flat, double c) {
+            cell = c;
+            Vec2 a = Vec2::Constant(std::numeric_limits<double>::infinity()), b = -a;
+            for (const Vec2& q : flat.uv) {
+                a = a.cwiseMin(q);
+                b = b.cwiseMax(q);
+            }
+            lo = a - Vec2::Constant(2 * c);
+            nx = static_cast<int>(std::ceil((b.x() - lo.x()) / c)) + 3;
+            ny = static_cast<int>(std::ceil((b.y() - lo.y()) / c)) + 3;
+            on.assign(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0);
+        }
+        void add(const Mesh& m) {
+            for (const Tri& t : m.faces) {
+                Vec2 a = m.vertices[static_cast<std::size_t>(t[0])].head<2>(), b = a;
+                for (int k = 1; k < 3; ++k) {
+                    a = a.cwiseMin(m.vertices[static_cast<std::size_t>(t[k])].head<2>());
+                    b = b.cwiseMax(m.vertices[static_cast<std::size_t>(t[k])].head<2>());
+                }
+                const int i0 = std::max(0, static_cast<int>(std::floor((a.x() - lo.x()) / cell)));
+                const int i1 = std::min(nx - 1, static_cast<int>(std::floor((b.x() - lo.x()) / cell)));
+                const int j0 = std::max(0, static_cast<int>(std::floor((a.y() - lo.y()) / cell)));
+                const int j1 = std::min(ny - 1, static_cast<int>(std::floor((b.y() - lo.y()) / cell)));
+                for (int j = j0; j <= j1; ++j)
+                    for (int i = i0; i <= i1; ++i) on[static_cast<std::size_t>(j * nx + i)] = 1;
+            }
+        }
+        [[nodiscard]] bool occupied(double x, double y) const {
+            const int i = static_cast<int>(std::floor((x - lo.x()) / cell)), j = static_cast<int>(std::floor((y - lo.y()) / cell));
+            if (i < 0 || j < 0 || i >= nx || j >= ny) return false;
+            return on[static_cast<std::size_t>(j * nx + i)] != 0;
+        }
+    };
+
+    /// A kernel mesh (patch frame) as surface points; false when a vertex is off the patch.
+    bool to_surface(const Mesh& m, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs,
+                    std::vector<SurfacePoint>* out) const {
+        out->resize(m.vertices.size());
+        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+            const Vec3& p = m.vertices[v];
+            const auto hit = locator.locate(p.head<2>(), 2.0 * cell_);
+            if (hit.local_face < 0) return false;
+            (*out)[v] = {flat.faces[static_cast<std::size_t>(hit.local_face)], hit.bary, p.z() * hs};
+        }
+        return true;
+    }
+
+    Mesh embed_element(const std::vector<SurfacePoint>& anchors, const std::vector<Tri>& faces) const {
+        Mesh m;
+        m.faces = faces;
+        m.vertices.reserve(anchors.size());
+        for (const SurfacePoint& sp : anchors) m.vertices.push_back(embed(sp));
+        return m;
+    }
+
+    /// Applies a plan like the planar stage does, with collisions tested on the embedded elements.
+    void apply(const quilt::PatchPlan& plan, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs) {
+        using Kind = quilt::PatchPlan::Change::Kind;
+        struct Candidate {
+            const quilt::PatchPlan::Change* change;
+            std::vector<SurfacePoint> anchors, fallback_anchors;
+            Mesh embedded, fallback;
+        };
+        std::vector<Candidate> pending;
+        for (const auto& ch : plan.changes) {
+            Candidate c{&ch, {}, {}, {}, {}};
+            if (!to_surface(ch.mesh, flat, locator, hs, &c.anchors)) continue;
+            c.embedded = embed_element(c.anchors, ch.mesh.faces);
+            if (!ch.fallback.faces.empty() && to_surface(ch.fallback, flat, locator, hs, &c.fallback_anchors))
+                c.fallback = embed_element(c.fallback_anchors, ch.fallback.faces);
+            pending.push_back(std::move(c));
+        }
+        for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
+            std::vector<Candidate> refused;
+            const std::size_t before = pending.size();
+            for (auto& c : pending) {
+                const auto* ch = c.change;
+                std::vector<int> ignore;
+                if (ch->old_id >= 0) ignore.push_back(elems_[static_cast<std::size_t>(ch->old_id)].collider_id);
+                Kind kind = ch->kind;
+                const std::vector<Tri>* faces = &ch->mesh.faces;
+                std::vector<SurfacePoint>* anchors = &c.anchors;
+                Mesh* embedded = &c.embedded;
+                if (collider_.collides(c.embedded, ignore)) {
+                    if (c.fallback.faces.empty() || collider_.collides(c.fallback, ignore)) {
+                        refused.push_back(std::move(c));
+                        continue;
+                    }
+                    faces = &ch->fallback.faces;
+                    anchors = &c.fallback_anchors;
+                    embedded = &c.fallback;
+                    kind = Kind::Replaced;
+                }
+                int source = ch->source;
+                if (kind != Kind::Added) {
+                    if (source < 0) source = elems_[static_cast<std::size_t>(ch->old_id)].source;
+                    remove_element(ch->old_id);
+                    if (kind == Kind::Stitched) ++report_.elements_stitched;
+                    if (kind == Kind::Replaced) ++report_.elements_replaced;
+                }
+                add_element(std::move(*anchors), *faces, std::move(*embedded), source);
+            }
+            if (refused.size() == before) {
+                pending = std::move(refused);
+                break;
+            }
+            pending = std::move(refused);
+        }
+        for (const auto& c : pending) {
+            if (c.change->kind == Kind::Stitched) ++report_.stitch_failures;
+            else if (c.change->kind != Kind::Deformed) ++report_.collisions_avoided;
+        }
+    }
+
+    void add_element(std::vector<SurfacePoint> anchors, const std::vector<Tri>& faces, Mesh embedded, int source) {
+        SurfElement e;
+        e.anchors = std::move(anchors);
+        e.faces = faces;
+        e.source = source;
+        e.alive = true;
+        e.collider_id = collider_.add(embedded);
+        e.embedded = std::move(embedded);
+        for (const SurfacePoint& sp : e.anchors) e.base_faces.push_back(sp.face);
+        std::sort(e.base_faces.begin(), e.base_faces.end());
+        e.base_faces.erase(std::unique(e.base_faces.begin(), e.base_faces.end()), e.base_faces.end());
+        const int id = static_cast<int>(elems_.size());
+        for (int f : e.base_faces) elems_on_face_[static_cast<std::size_t>(f)].push_back(id);
+        elems_.push_back(std::move(e));
+    }
+
+    void remove_element(int id) {
+        SurfElement& e = elems_[static_cast<std::size_t>(id)];
+        if (!e.alive) return;
+        e.alive = false;
+        collider_.remove(e.collider_id);
+        for (int f : e.base_faces) {
+            auto& b = elems_on_face_[static_cast<std::size_t>(f)];
+            b.erase(std::remove(b.begin(), b.end(), id), b.end());
+        }
+        e = SurfElement();
+    }
+
+    void finish(SurfaceQuiltResult& result) {
+        auto t0 = Clock::now();
+        std::vector<int> kept;
+        for (std::size_t id = 0; id < elems_.size(); ++id) {
+            const SurfElement& e = elems_[id];
+            if (!e.alive) continue;
+            const bool source_closed = e.source >= 0 && sw_.element_closed[static_cast<std::size_t>(e.source)];
+            if (source_closed && !quilt::is_closed_oriented(e.embedded)) {
+                ++report_.elements_removed;
+                continue;
+            }
+            kept.push_back(static_cast<int>(id));
+        }
+        std::vector<char> drop(kept.size(), 0);
+        if (swatch_elements_disjoint()) {
+            std::vector<const Mesh*> meshes;
+            for (int id : kept) meshes.push_back(&elems_[static_cast<std::size_t>(id)].embedded);
+            const ElementMesh all = concatenate(meshes);
+            for (const auto& [a, b] : intersecting_element_pairs(all.mesh, all.element_of_face)) {
+                if (drop[static_cast<std::size_t>(a)] || drop[static_cast<std::size_t>(b)]) continue;
+                const std::size_t fa = meshes[static_cast<std::size_t>(a)]->faces.size(), fb = meshes[static_cast<std::size_t>(b)]->faces.size();
+                drop[static_cast<std::size_t>(fa < fb ? a : b)] = 1;
+                ++report_.elements_removed;
+            }
+        }
+        std::vector<const Mesh*> final_meshes;
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+            if (drop[k]) continue;
+            const SurfElement& e = elems_[static_cast<std::size_t>(kept[k])];
+            final_meshes.push_back(&e.embedded);
+            result.source_element.push_back(e.source);
+            result.anchors.insert(result.anchors.end(), e.anchors.begin(), e.anchors.end());
+            if (quilt::is_closed_oriented(e.embedded)) ++report_.elements_closed;
+        }
+        ElementMesh out = concatenate(final_meshes);
+        result.mesh = std::move(out.mesh);
+        result.element_of_face = std::move(out.element_of_face);
+        result.base = base_.mesh;
+        stage_seconds_["finish"] += seconds_since(t0);
+
+        QualityReport& r = report_;
+        r.faces = static_cast<int>(result.mesh.faces.size());
+        r.vertices = static_cast<int>(result.mesh.vertices.size());
+        r.elements = static_cast<int>(result.source_element.size());
+        r.cell_size = cell_;
+        const double mx = 0.15 * sw_.box.size().x(), my = 0.15 * sw_.box.size().y();
+        r.swatch_density = quilt::window_density(sw_.mesh, mx, my, sw_.box.size().x() - mx, sw_.box.size().y() - my);
+        r.output_density = mesh_area(result.mesh) / std::max(base_.total_area, 1e-300);
+        for (const auto& [phase, n] : phase_count_) r.largest_translation_share = std::max(r.largest_translation_share, n);
+        for (const auto& [stage, s] : stage_seconds_) r.seconds.emplace_back(stage, s);
+        result.report = r;
+        surface_.swatch_density = r.swatch_density;
+        for (char p : processed_) surface_.base_faces_processed += p;
+        region_density(result);
+        result.surface = surface_;
+        result.warnings = warnings_;
+        if (r.elements_removed > 0)
+            result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
+    }
+
+    /// Density per region: the base split into regions of about 4 footprints (farthest-point
+    /// centres on face centroids, faces to the nearest centre); element faces count where they are
+    /// anchored. Regions with less than one footprint of area (small components, slivers at
+    /// borders) are left out.
+    void region_density(const SurfaceQuiltResult& result) {
+        const std::size_t F = base_.mesh.faces.size();
+        const double fp_area = sw_.box.size().x() * sw_.box.size().y() * scale_ * scale_;
+        const int regions = std::clamp(static_cast<int>(base_.total_area / (4.0 * fp_area)), 1, 64);
+        std::vector<Vec3> centres{base_.centroid[0]};
+        std::vector<double> d(F, std::numeric_limits<double>::infinity());
+        std::vector<int> region(F, 0);
+        for (int r = 0; r < regions; ++r) {
+            std::size_t far = 0;
+            for (std::size_t f = 0; f < F; ++f) {
+                const double dd = (base_.centroid[f] - centres.back()).squaredNorm();
+                if (dd < d[f]) {
+                    d[f] = dd;
+                    region[f] = r;
+                }
+                if (d[f] > d[far]) far = f;
+            }
+            if (r + 1 < regions) centres.push_back(base_.centroid[far]);
+        }
+        std::vector<double> base_area(static_cast<std::size_t>(regions), 0.0), elem_area(static_cast<std::size_t>(regions), 0.0);
+        for (std::size_t f = 0; f < F; ++f) base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
+        for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
+            const int bf = result.anchors[static_cast<std::size_t>(result.mesh.faces[f][0])].face;
+            elem_area[static_cast<std::size_t>(region[static_cast<std::size_t>(bf)])] += face_area(result.mesh, f);
+        }
+        double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+        int counted = 0;
+        for (int r = 0; r < regions; ++r) {
+            if (base_area[static_cast<std::size_t>(r)] < fp_area) continue;
+            const double ratio = elem_area[static_cast<std::size_t>(r)] / base_area[static_cast<std::size_t>(r)] / std::max(surface_.swatch_density, 1e-300);
+            lo = std::min(lo, ratio);
+            hi = std::max(hi, ratio);
+            ++counted;
+        }
+        surface_.regions = counted;
+        surface_.region_density_min = counted ? lo : 0.0;
+        surface_.region_density_max = counted ? hi : 0.0;
+    }
+
+    bool swatch_elements_disjoint() {
+        std::vector<int> eof = connected_components(sw_.mesh);
+        return intersecting_element_pairs(sw_.mesh, eof, 1).empty();
+    }
+
+    SurfaceQuiltOptions opt_;
+    quilt::SwatchData sw_;
+    TriangleIndex index_;
+    quilt::KernelParams params_;
+    double cell_ = 1.0;
+    int sx_ = 0, sy_ = 0, k_ = 0;
+    int symmetry_ = 4;
+    double diagonal_ = 0.0, scale_ = 1.0, height_scale_ = 0.0, min_field_scale_ = 1.0;
+    Base base_;
+    std::vector<Vec3> direction_;
+    std::vector<double> local_scale_;
+    std::vector<char> processed_;
+    std::vector<int> score_;
+    std::vector<int> face_slot_;
+    std::vector<std::vector<int>> elems_on_face_;
+    std::vector<SurfElement> elems_;
+    ElementCollider collider_;
+    std::mt19937_64 rng_;
+    QualityReport report_;
+    SurfaceQualityReport surface_;
+    std::vector<std::string> warnings_;
+    std::map<std::pair<int, int>, int> phase_count_;
+    std::map<std::string, double> stage_seconds_;
+};
+
+}  // namespace
+
+SurfaceQuiltResult quilt_surface(const Mesh& base, const Mesh& swatch, const SurfaceQuiltOptions& options) {
+    SurfaceQuilter q(base, swatch, options);
+    return q.run();
+}
+
+}  // namespace meshquilt
