@@ -94,7 +94,8 @@ Mesh load_input(const std::string& path, bool repair, bool require_thin_axis) {
 int main(int argc, char** argv) {
     using namespace meshquilt;
     using namespace meshquilt::cli;
-    CLI::App root{"meshquilt: cover meshes with geometric textures grown from a swatch (mesh quilting)"};
+    CLI::App root{"meshquilt: cover meshes with geometric textures grown from a swatch (mesh quilting)", "meshquilt"};
+    root.footer("The main job: meshquilt BASE SWATCH -o OUT [options], the same as `meshquilt surface BASE SWATCH ...`.");
     root.require_subcommand(1);
     root.add_flag("-q,--quiet", global_flags().quiet, "No progress bar");
     root.add_flag("-v,--verbose", global_flags().verbosity, "More log output (repeat for debug)");

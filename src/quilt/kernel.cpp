@@ -4,6 +4,7 @@
 #include "core/intersect.h"
 #include "meshquilt/errors.h"
 #include "quilt/deform.h"
+#include "quilt/swatch.h"
 
 #include <maxflow.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +20,10 @@
 namespace meshquilt::quilt {
 
 namespace {
+
+/// Largest change of an element's area that deformation may make (Section 2.6 moves an element
+/// half-way to its partner, which may be of another size).
+constexpr double kMaxAreaChange = 1.3;
 
 using Side = std::function<bool(double, double)>;
 
@@ -535,7 +540,7 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
 }
 
 PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewElement>& fresh, const Overlap& ov,
-                     const KernelParams& params) {
+                     const KernelParams& params, const std::vector<Mesh>& obstacles) {
     PatchPlan plan;
     if (fresh.empty()) return plan;
 
@@ -629,7 +634,10 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             ch.kind = outcome == StitchOutcome::UseNew    ? PatchPlan::Change::Replaced
                       : outcome == StitchOutcome::KeepOld ? PatchPlan::Change::Deformed
                                                           : PatchPlan::Change::Stitched;
-            ch.source = outcome == StitchOutcome::KeepOld ? -1 : fresh[static_cast<std::size_t>(e)].source;
+            // A stitched element is of the swatch element that gave it more of its own area.
+            ch.source = outcome == StitchOutcome::KeepOld || (outcome == StitchOutcome::Stitched && own.old_part > own.new_part)
+                            ? -1
+                            : fresh[static_cast<std::size_t>(e)].source;
             ch.mesh = std::move(merged);
             if (outcome == StitchOutcome::Stitched && own.new_part > own.old_part) ch.fallback = in_d;
         } else if (own.new_part > own.old_part) {
@@ -643,6 +651,29 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             ch.source = -1;
             ch.mesh = std::move(out_d);
         }
+        // Beyond the paper: deformation towards a partner of another size (pebbles vary 2x) must not
+        // resize an element much; past kMaxAreaChange the undeformed element is used instead.
+        auto resized = [](const Mesh& m, const Mesh& ref) {
+            const double r = mesh_area(m) / std::max(mesh_area(ref), 1e-300);
+            return r > kMaxAreaChange || r < 1.0 / kMaxAreaChange;
+        };
+        // A stitch joins halves of two elements; unless they are long elements that stitching is
+        // meant to extend (threads), the result must keep about the size of the one it is counted as.
+        auto elongated = [](const Mesh& m) {
+            const Vec3 d = bounding_box(m).size();
+            return std::max(d.x(), d.y()) > 3.0 * std::max(std::min(d.x(), d.y()), 1e-300);
+        };
+        if (ch.kind == PatchPlan::Change::Stitched && !(elongated(mo) && elongated(mi)) &&
+            resized(ch.mesh, own.old_part > own.new_part ? mo : mi)) {
+            const bool new_wins = own.new_part > own.old_part;
+            ch.kind = new_wins ? PatchPlan::Change::Replaced : PatchPlan::Change::Deformed;
+            ch.source = new_wins ? fresh[static_cast<std::size_t>(e)].source : -1;
+            ch.mesh = new_wins ? in_d : out_d;
+            ch.fallback = Mesh();
+        }
+        if (ch.kind == PatchPlan::Change::Replaced && resized(ch.mesh, mi)) ch.mesh = mi;
+        else if (ch.kind == PatchPlan::Change::Deformed && resized(ch.mesh, mo)) ch.mesh = mo;
+        if (!ch.fallback.faces.empty() && resized(ch.fallback, mi)) ch.fallback = mi;
         merged_changes[k] = std::move(ch);
     });
     for (std::size_t k = 0; k < matched.size(); ++k) {
@@ -671,8 +702,12 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             const Box3 b = bounding_box(m);
             const double area_b = b.size().x() * b.size().y();
             bool twin = false;
-            for (const OldElement& oe : old) {
-                const Box3 ob = bounding_box(oe.mesh);
+            std::vector<const Mesh*> standing;
+            for (const OldElement& oe : old) standing.push_back(&oe.mesh);
+            for (const Mesh& m2 : obstacles) standing.push_back(&m2);
+            for (const Mesh* om : standing) {
+                if (om->faces.empty()) continue;
+                const Box3 ob = bounding_box(*om);
                 const double ix = std::min(b.max.x(), ob.max.x()) - std::max(b.min.x(), ob.min.x());
                 const double iy = std::min(b.max.y(), ob.max.y()) - std::max(b.min.y(), ob.min.y());
                 if (ix <= 0 || iy <= 0) continue;

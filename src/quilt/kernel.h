@@ -63,8 +63,10 @@ struct PatchPlan {
 };
 
 /// Plans the merge of `fresh` into the output around `old` (Sections 2.5-2.7).
+/// `obstacles` are old elements the caller cannot hand over whole (on a surface: elements reaching
+/// beyond the flattened patch); they take part only in the crowding test.
 PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewElement>& fresh, const Overlap& overlap,
-                     const KernelParams& params);
+                     const KernelParams& params, const std::vector<Mesh>& obstacles = {});
 
 /// Merges two corresponding elements (Section 2.7, exposed for tests). An old element lying entirely
 /// where the new one is gets replaced (outcome UseNew); a new one lying entirely where the old one is

@@ -1,0 +1,149 @@
+// labels: e2e
+// The main job as a user runs it, `meshquilt BASE SWATCH -o OUT`: exit codes, messages, groups,
+// report, atomic output, determinism.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+    int code = -1;
+    std::string err;
+};
+
+Outcome run(const std::string& args) {
+    const fs::path errfile = fs::temp_directory_path() / ("mq_cli_surface_err_" + std::to_string(::getpid()) + ".txt");
+    const std::string cmd = std::string(MQ_CLI_PATH) + " " + args + " 2>" + errfile.string() + " >/dev/null";
+    const int status = std::system(cmd.c_str());
+    Outcome o;
+    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(errfile);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    o.err = ss.str();
+    fs::remove(errfile);
+    return o;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+int count(const std::string& text, const std::string& what) {
+    int n = 0;
+    for (std::size_t pos = 0; (pos = text.find(what, pos)) != std::string::npos; ++pos) ++n;
+    return n;
+}
+
+class CliSurface : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("mq_cli_surface_" + std::to_string(::getpid()));
+        fs::create_directories(dir);
+        base = std::string(MQ_TEST_DATA_DIR) + "/surface/eight.obj";
+        swatch = std::string(MQ_SWATCH_DIR) + "/rivets.obj";
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    fs::path dir;
+    std::string base, swatch;
+};
+
+TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
+    const fs::path a = dir / "a.obj", b = dir / "b.obj", c = dir / "c.obj", report = dir / "r.json";
+    const std::string common = base + " " + swatch + " --scale 0.3 --with-base";
+    ASSERT_EQ(run(common + " --seed 3 -o " + a.string() + " --report " + report.string()).code, 0);
+    ASSERT_EQ(run("surface " + common + " --seed 3 -o " + b.string()).code, 0);  // the explicit form
+    ASSERT_EQ(run(common + " --seed 4 -o " + c.string()).code, 0);
+    const std::string sa = slurp(a);
+    EXPECT_EQ(sa, slurp(b));
+    EXPECT_NE(sa, slurp(c));
+    const auto j = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(count(sa, "\no element_"), j.at("elements").get<int>());
+    EXPECT_EQ(count(sa, "\no base\n"), 1);
+    // The base group holds the base's 634 faces.
+    const std::size_t at = sa.find("\no base\n");
+    EXPECT_EQ(count(sa.substr(at), "\nf "), 634);
+    EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
+    for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
+    for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
+    EXPECT_EQ(j.at("elements_closed").get<int>(), j.at("elements").get<int>());
+}
+
+TEST_F(CliSurface, BadInputsExitTwoNameTheFileAndWriteNothing) {
+    const fs::path out = dir / "out.obj";
+    // Missing base.
+    Outcome o = run((dir / "nope.obj").string() + " " + swatch + " -o " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find("nope.obj"), std::string::npos) << o.err;
+    // A non-manifold base: three triangles on one edge.
+    const fs::path fin = dir / "fin.obj";
+    std::ofstream(fin) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    o = run(fin.string() + " " + swatch + " -o " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find("fin.obj"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("non-manifold"), std::string::npos) << o.err;
+    // Empty base file.
+    const fs::path empty = dir / "empty.obj";
+    std::ofstream(empty) << "# nothing\n";
+    o = run(empty.string() + " " + swatch + " -o " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find("empty.obj"), std::string::npos) << o.err;
+    // Absurd scales and options.
+    for (const std::string& opts : {"--scale 0", "--scale -1", "--scale nan", "--scale 1e-6", "--swatch-size -2", "--height -1",
+                                    "--symmetry 5", "--embed shell", "--scale 0.1 --swatch-size 1"}) {
+        o = run(base + " " + swatch + " " + opts + " -o " + out.string());
+        EXPECT_EQ(o.code, 2) << opts << ": " << o.err;
+        EXPECT_FALSE(o.err.empty()) << opts;
+    }
+    // A malformed field file: file and line named.
+    const fs::path field = dir / "field.txt";
+    std::ofstream(field) << "face 0 1 0 0\nface 1 1 0\n";
+    o = run(base + " " + swatch + " --field " + field.string() + " -o " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find("field.txt:2"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(CliSurface, FailedRunLeavesExistingOutputUntouched) {
+    const fs::path out = dir / "good.obj";
+    std::ofstream(out) << "# a good file\n";
+    const Outcome o = run(base + " " + swatch + " --scale 1e-6 -o " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_EQ(slurp(out), "# a good file\n");
+}
+
+TEST_F(CliSurface, InsideOutBaseIsDecoratedWithAWarning) {
+    // The eight with every face reversed.
+    std::ifstream in(base);
+    std::ofstream flipped(dir / "flipped.obj");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("f ", 0) == 0) {
+            std::istringstream ss(line.substr(2));
+            std::string a, b, c;
+            ss >> a >> b >> c;
+            flipped << "f " << a << " " << c << " " << b << "\n";
+        } else {
+            flipped << line << "\n";
+        }
+    }
+    flipped.close();
+    const Outcome o = run((dir / "flipped.obj").string() + " " + swatch + " --scale 0.3 -o " + (dir / "o.obj").string());
+    EXPECT_EQ(o.code, 0) << o.err;
+    EXPECT_NE(o.err.find("facing inwards"), std::string::npos) << o.err;
+}
+
+}  // namespace
