@@ -10,7 +10,8 @@ Needs Blender as a Python module (Python 3.11):
 
 Usage:
     /tmp/bpyenv/bin/python scripts/render.py IN.obj OUT.jpg [--size 900 500] [--samples 32]
-        [--azimuth -18] [--elevation 42] [--zoom 1.0]
+        [--azimuth -18] [--elevation 42] [--zoom 1.0] [--up z|y|x]
+The OBJ group `base` (meshquilt --with-base) is drawn in one neutral colour.
 OUT may end in .jpg (quality 88; about 50 KB for the README images) or .png (8-bit, maximum
 compression; about 400 KB at 900 x 500).
 Also runs inside Blender: blender -b -P scripts/render.py -- IN.obj OUT.jpg
@@ -38,11 +39,15 @@ PALETTE = [
 
 
 def read_obj(path):
-    """Vertices (n x 3) and triangles (m x 3, 0-based) of an OBJ; polygons are fan-triangulated."""
-    verts, tris = [], []
+    """Vertices (n x 3), triangles (m x 3, 0-based) and, per triangle, whether it is in the OBJ
+    group `base` (meshquilt --with-base); polygons are fan-triangulated."""
+    verts, tris, base = [], [], []
+    in_base = False
     with open(path, "r", encoding="utf-8", errors="replace") as f:
         for line in f:
-            if line.startswith("v "):
+            if line.startswith(("o ", "g ")):
+                in_base = line.split()[1:2] == ["base"]
+            elif line.startswith("v "):
                 verts.append([float(t) for t in line.split()[1:4]])
             elif line.startswith("f "):
                 idx = []
@@ -51,9 +56,10 @@ def read_obj(path):
                     idx.append(i - 1 if i > 0 else len(verts) + i)
                 for k in range(1, len(idx) - 1):
                     tris.append((idx[0], idx[k], idx[k + 1]))
+                    base.append(in_base)
     if not tris:
         sys.exit(f"render.py: {path}: no faces")
-    return np.asarray(verts, dtype=np.float64), np.asarray(tris, dtype=np.int64)
+    return np.asarray(verts, dtype=np.float64), np.asarray(tris, dtype=np.int64), np.asarray(base, dtype=bool)
 
 
 def components(n_verts, tris):
@@ -90,7 +96,7 @@ def element_colours(count):
     return out
 
 
-def build_mesh(verts, tris):
+def build_mesh(verts, tris, base):
     labels = components(len(verts), tris)
     mesh = bpy.data.meshes.new("quilt")
     mesh.vertices.add(len(verts))
@@ -102,6 +108,7 @@ def build_mesh(verts, tris):
     mesh.update(calc_edges=True)
     mesh.validate()
     colours = element_colours(labels.max() + 1)[labels]
+    colours[base] = [0.45 ** 2.2, 0.43 ** 2.2, 0.40 ** 2.2, 1.0]  # the base: neutral grey-brown
     attr = mesh.color_attributes.new("element", "FLOAT_COLOR", "FACE")
     attr.data.foreach_set("color", colours.astype(np.float32).ravel())
     # Smooth shading where the surface is smooth, flat across sharp edges (facets, bevels).
@@ -200,12 +207,17 @@ def main():
     ap.add_argument("--azimuth", type=float, default=-18.0, help="degrees; 0 looks along +y")
     ap.add_argument("--elevation", type=float, default=42.0, help="degrees above the xy plane")
     ap.add_argument("--zoom", type=float, default=1.0, help="> 1 crops into the middle")
+    ap.add_argument("--up", choices=("x", "y", "z"), default="z", help="the mesh's up axis (meshes from scans are often y-up)")
     args = ap.parse_args(argv)
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    verts, tris = read_obj(args.input)
-    obj, count = build_mesh(verts, tris)
+    verts, tris, base = read_obj(args.input)
+    if args.up == "y":  # y-up to z-up, a rotation (keeps orientation)
+        verts = np.stack([verts[:, 0], -verts[:, 2], verts[:, 1]], axis=1)
+    elif args.up == "x":
+        verts = np.stack([verts[:, 1], verts[:, 2], verts[:, 0]], axis=1)
+    obj, count = build_mesh(verts, tris, base)
     obj.data.materials.append(material_from_attribute())
 
     used = verts[np.unique(tris)]

@@ -338,6 +338,30 @@ TEST(SurfaceField, StrokesSteerTheField) {
     EXPECT_LT(sum / n * 180.0 / M_PI, 10.0);
 }
 
+TEST(SurfaceField, FieldMagnitudeSetsTheLocalScale) {
+    // Vectors of length 1 on the lower half of a cylinder, 2 on the upper half: elements up there
+    // come out twice as large (in size, the square root of area).
+    const Mesh base = shapes::open_cylinder(1.0, 6.0, 64, 48);
+    mq::GuidanceField field;
+    for (std::size_t v = 0; v < base.vertices.size(); ++v)
+        field.vertices.push_back({static_cast<int>(v), Vec3(0, 0, base.vertices[v].z() < 3.0 ? 1.0 : 2.0)});
+    const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("rivets")), 0.1, 1, field);
+    expect_whole_and_disjoint(run);
+    std::vector<double> low, high;
+    for (const auto& e : mq::test::split_elements(run.r.mesh, run.r.element_of_face)) {
+        const double z = element_centroid(e).z();
+        if (z < 2.0) low.push_back(std::sqrt(area(e)));
+        if (z > 4.0) high.push_back(std::sqrt(area(e)));
+    }
+    ASSERT_GT(low.size(), 20u);
+    ASSERT_GT(high.size(), 5u);
+    std::sort(low.begin(), low.end());
+    std::sort(high.begin(), high.end());
+    const double ratio = high[high.size() / 2] / low[low.size() / 2];
+    EXPECT_GT(ratio, 1.7);
+    EXPECT_LT(ratio, 2.3);
+}
+
 TEST(SurfaceField, WithoutAFieldNeighboursAgreeUpToTheSwatchSymmetry) {
     const SurfaceRun run = quilt(shapes::torus(2.0, 0.8, 64, 32), grain_swatch(), 0.18, 1);
     expect_whole_and_disjoint(run);

@@ -282,7 +282,10 @@ private:
         const double local = local_scale_[static_cast<std::size_t>(seed)];
         const double diag = std::hypot(sx_ * cell_, sy_ * cell_) * scale_ * local;
         const double min_radius = std::min(1.25 * diag, 1.2 * element_diag_ * scale_ * local);
-        double radius = 1.25 * diag;
+        // Seeds move along the synthesis front, so the radius that passed last time is a good start
+        // (each try costs a disc and an LSCM solve); it may grow back by 1.3 per patch.
+        const double max_radius = 1.25 * diag;
+        double radius = last_radius_ > 0 ? std::clamp(1.3 * last_radius_ * local, min_radius, max_radius) : max_radius;
         quilt::FlatPatch flat;
         bool ok = false;
         for (int attempt = 0; attempt < 8; ++attempt) {
@@ -293,6 +296,7 @@ private:
             radius = std::max(min_radius, 0.7 * radius);
             if (attempt == 0) ++surface_.patches_shrunk;
         }
+        last_radius_ = radius / local;
         if (!ok && !quilt::flatten_lscm(base_.mesh, {seed}, &flat)) return false;  // the seed alone is always flat
         const Vec3 c0 = base_.centroid[static_cast<std::size_t>(seed)];
         // Orientation: the N-th power average of the field over faces near the seed, in flat
@@ -779,6 +783,7 @@ private:
     int symmetry_ = 4;
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
     std::vector<double> swatch_element_area_;
+    double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
     double diagonal_ = 0.0, scale_ = 1.0, height_scale_ = 0.0, min_field_scale_ = 1.0;
     Base base_;
     std::vector<Vec3> direction_;
