@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the main job on a bundled swatch.
-# Output: out/pebbles_plane.obj (+ a JSON report next to it).
+# Installs what is missing, builds, and runs the main job on a bundled example: spot the cow
+# (tests/data/surface/spot.obj, CC0) covered with rivet heads grown from swatches/rivets.obj.
+# Output: out/spot_rivets.obj (decoration + base, one OBJ group each) and out/spot_rivets.json.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_missing
 build -DMESHQUILT_BUILD_TESTS=OFF -DMESHQUILT_BUILD_BENCH=OFF
 mkdir -p "$ROOT/out"
-"$BUILD/meshquilt" plane "$ROOT/swatches/pebbles.obj" --size 40 40 --seed 1 \
-  -o "$ROOT/out/pebbles_plane.obj" --report "$ROOT/out/pebbles_plane.json"
-"$BUILD/meshquilt" inspect "$ROOT/out/pebbles_plane.obj" | head -12
+"$BUILD/meshquilt" "$ROOT/tests/data/surface/spot.obj" "$ROOT/swatches/rivets.obj" --scale 0.12 --seed 1 --with-base \
+  -o "$ROOT/out/spot_rivets.obj" --report "$ROOT/out/spot_rivets.json"
+"$BUILD/meshquilt" inspect "$ROOT/out/spot_rivets.obj" | head -12

@@ -86,6 +86,15 @@ void expect_whole_and_disjoint(const SurfaceRun& run) {
     EXPECT_TRUE(mq::test::no_element_intersections(r.mesh, r.element_of_face));
     EXPECT_LE(r.report.elements_removed, 0.02 * (r.report.elements + r.report.elements_removed));
     ASSERT_EQ(r.anchors.size(), r.mesh.vertices.size());
+    // No element folds through itself (embedding and height clamping included).
+    int folded = 0;
+    std::string first;
+    const auto parts = mq::test::split_elements(r.mesh, r.element_of_face);
+    for (std::size_t e = 0; e < parts.size(); ++e) {
+        const auto ok = mq::test::no_self_intersections(parts[e]);
+        if (!ok && folded++ == 0) first = "element " + std::to_string(e) + ": " + ok.message();
+    }
+    EXPECT_EQ(folded, 0) << first;
 }
 
 /// Element area per base area over regions of a coarse voxel partition of the base (cells of two
@@ -262,8 +271,28 @@ TEST(Surface, InsideOutBaseIsFlippedWithAWarningAndDecoratedOutside) {
     expect_whole_and_disjoint(run);
     EXPECT_EQ(run.r.surface.base_flipped_components, 1);
     ASSERT_FALSE(run.r.warnings.empty());
-    EXPECT_NE(run.r.warnings[0].find("inwards"), std::string::npos);
+    EXPECT_NE(run.r.warnings[0].find("facing inwards"), std::string::npos);
     for (const Vec3& v : run.r.mesh.vertices) EXPECT_GE(v.norm(), 0.97);
+}
+
+TEST(Surface, InsideOutOpenBaseWithAHoleIsFlippedButAnOpenSheetIsNot) {
+    // A sphere with a few faces removed (a scan with a hole), inside out: flipped.
+    Mesh holed = shapes::flipped(isect::icosphere(1.0, 3));
+    holed.faces.resize(holed.faces.size() - 6);
+    const SurfaceRun run = quilt(holed, mq::read_mesh(swatch_path("rivets")), 0.3);
+    EXPECT_EQ(run.r.surface.base_flipped_components, 1);
+    for (const Vec3& v : run.r.mesh.vertices) EXPECT_GE(v.norm(), 0.97);
+    // A flat sheet facing down is a valid choice of side: kept.
+    Mesh sheet = shapes::flipped(shapes::grid(8, 4.0));
+    const SurfaceRun flat = quilt(sheet, mq::read_mesh(swatch_path("rivets")), 0.3);
+    EXPECT_EQ(flat.r.surface.base_flipped_components, 0);
+    double top = -1e300, mean = 0.0;
+    for (const Vec3& v : flat.r.mesh.vertices) {
+        top = std::max(top, v.z());
+        mean += v.z() / static_cast<double>(flat.r.mesh.vertices.size());
+    }
+    EXPECT_LE(top, 1e-12);  // heights are never negative: nothing sinks into the base
+    EXPECT_LT(mean, -0.02);
 }
 
 TEST(Surface, AnchorsReproduceTheEmbeddedVertices) {

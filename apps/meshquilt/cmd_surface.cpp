@@ -97,6 +97,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                             {"coverage", s.base_faces ? static_cast<double>(s.base_faces_processed) / s.base_faces : 0.0},
                             {"patches_shrunk", s.patches_shrunk},
                             {"frozen_elements_seen", s.frozen_elements_seen},
+                            {"elements_folded", s.elements_folded},
                             {"symmetry", s.symmetry},
                             {"base_units_per_swatch_unit", s.base_scale},
                             {"region_density_min", s.region_density_min},

@@ -71,6 +71,7 @@ struct SurfaceQualityReport {
     int base_faces_processed = 0;  ///< faces the synthesis reached (all, on success)
     int patches_shrunk = 0;        ///< patches made smaller because LSCM distorted area by more than 4
     int frozen_elements_seen = 0;  ///< old elements reaching beyond a patch, treated as obstacles
+    int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int symmetry = 0;              ///< N of the N-direction field used
     double base_scale = 0.0;       ///< base units per swatch unit
     double swatch_density = 0.0;   ///< element area per footprint area in the swatch
@@ -79,7 +80,7 @@ struct SurfaceQualityReport {
     double region_density_min = 0.0;
     double region_density_max = 0.0;
     int regions = 0;
-    int base_flipped_components = 0;  ///< closed inside-out components flipped for the synthesis
+    int base_flipped_components = 0;  ///< inside-out components flipped for the synthesis
 };
 
 struct SurfaceQuiltResult {

@@ -150,20 +150,45 @@ private:
 
     void prepare_base(const Mesh& input) {
         Mesh m = weld(input);
-        // Closed components that face inwards are flipped (the decoration grows along the normals).
+        // Components that face inwards are flipped (the decoration grows along the normals). Closed
+        // ones by the sign of their volume; open ones (a scan with holes) only when they clearly
+        // enclose space: the signed volume of the cones from their centroid is negative and at least
+        // a tenth of what a sphere of the same area holds. An open sheet is left as it is.
         const MeshAnalysis an = analyse(m);
         const std::vector<int> comp = connected_components(m);
-        std::vector<char> flip(an.elements.size(), 0);
-        for (std::size_t e = 0; e < an.elements.size(); ++e)
-            if (an.elements[e].closed && an.elements[e].volume < 0) {
+        const std::size_t ncomp = an.elements.size();
+        std::vector<Vec3> centre(ncomp, Vec3::Zero());
+        std::vector<double> area(ncomp, 0.0), cone(ncomp, 0.0);
+        for (std::size_t f = 0; f < m.faces.size(); ++f) {
+            const double a = face_area(m, f);
+            centre[static_cast<std::size_t>(comp[f])] += a * face_centroid(m, f);
+            area[static_cast<std::size_t>(comp[f])] += a;
+        }
+        for (std::size_t e = 0; e < ncomp; ++e)
+            if (area[e] > 0) centre[e] /= area[e];
+        for (std::size_t f = 0; f < m.faces.size(); ++f) {
+            const auto e = static_cast<std::size_t>(comp[f]);
+            const Tri& t = m.faces[f];
+            const Vec3 a = m.vertices[static_cast<std::size_t>(t[0])] - centre[e], b = m.vertices[static_cast<std::size_t>(t[1])] - centre[e],
+                       c = m.vertices[static_cast<std::size_t>(t[2])] - centre[e];
+            cone[e] += a.dot(b.cross(c)) / 6.0;
+        }
+        std::vector<char> flip(ncomp, 0);
+        int open_flipped = 0;
+        for (std::size_t e = 0; e < ncomp; ++e) {
+            const bool closed = an.elements[e].closed;
+            const double sphere = std::pow(area[e], 1.5) / (6.0 * std::sqrt(M_PI));
+            if ((closed && an.elements[e].volume < 0) || (!closed && cone[e] < -0.1 * sphere)) {
                 flip[e] = 1;
                 ++surface_.base_flipped_components;
+                if (!closed) ++open_flipped;
             }
+        }
         if (surface_.base_flipped_components > 0) {
             for (std::size_t f = 0; f < m.faces.size(); ++f)
                 if (flip[static_cast<std::size_t>(comp[f])]) std::swap(m.faces[f][1], m.faces[f][2]);
-            warnings_.push_back("the base has " + std::to_string(surface_.base_flipped_components) +
-                                " closed component(s) facing inwards; they were flipped so the decoration grows outwards");
+            warnings_.push_back("the base has " + std::to_string(surface_.base_flipped_components) + " component(s) facing inwards (" +
+                                std::to_string(open_flipped) + " of them open); they were flipped so the decoration grows outwards");
         }
         if (an.non_manifold_edges > 0 || an.non_manifold_vertices > 0)
             throw InvalidInput("base is not manifold (" + std::to_string(an.non_manifold_edges) + " non-manifold edges, " +
@@ -549,6 +574,12 @@ private:
             if (hit.local_face < 0) return false;
             (*out)[v] = {flat.faces[static_cast<std::size_t>(hit.local_face)], hit.bary, p.z() * hs};
         }
+        // Deformation can push a bottom vertex a little below z = 0, into the base: the whole element
+        // is lifted by that much (clamping single vertices would fold the element's underside).
+        double lowest = 0.0;
+        for (const SurfacePoint& sp : *out) lowest = std::min(lowest, sp.height);
+        if (lowest < 0.0)
+            for (SurfacePoint& sp : *out) sp.height -= lowest;
         return true;
     }
 
@@ -571,7 +602,15 @@ private:
         // A new element goes onto the surface at its swatch element's size: where the patch's map
         // scales area (LSCM is conformal, not area preserving; normal displacement fans out over
         // convex ground), the element is rescaled about its centre in the frame, once.
-        auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded) {
+        //
+        // Normal displacement folds an element where the base is concave with a radius below its
+        // height; such an element is left out (counted), the ground stays for a later patch.
+        auto folded = [&](const Mesh& embedded) {
+            if (count_self_intersections(embedded, 1) == 0) return false;
+            ++surface_.elements_folded;
+            return true;
+        };
+        auto place_sized = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded) {
             if (!to_surface(m, flat, locator, hs, anchors)) return false;
             *embedded = embed_element(*anchors, m.faces);
             if (!fresh || source < 0 || height_scale_ > 0) return true;
@@ -587,6 +626,10 @@ private:
             *anchors = std::move(a2);
             *embedded = embed_element(*anchors, m.faces);
             return true;
+        };
+        auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded) {
+            if (!place_sized(m, source, fresh, anchors, embedded)) return false;
+            return !folded(*embedded);
         };
         std::vector<Candidate> pending;
         for (const auto& ch : plan.changes) {
