@@ -46,7 +46,7 @@ mq::Mesh decimate(const mq::Mesh& in, std::size_t faces) {
     for (std::size_t v = 0; v < in.vertices.size(); ++v)
         if (used[v] > 0) vi[v] = sm.add_vertex(K::Point_3(in.vertices[v].x(), in.vertices[v].y(), in.vertices[v].z()));
     for (const auto& f : in.faces) sm.add_face(vi[static_cast<std::size_t>(f[0])], vi[static_cast<std::size_t>(f[1])], vi[static_cast<std::size_t>(f[2])]);
-    CGAL::Surface_mesh_simplification::Count_stop_predicate<SM> stop(faces);
+    CGAL::Surface_mesh_simplification::Count_stop_predicate<SM> stop(faces * 3 / 2);  // counts edges: E = 1.5 F
     CGAL::Surface_mesh_simplification::edge_collapse(sm, stop);
     sm.collect_garbage();
     mq::Mesh out;
