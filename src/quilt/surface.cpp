@@ -101,7 +101,6 @@ public:
         k_ = std::max(2, static_cast<int>(std::lround(std::min(sx_, sy_) / 3.0)));
         k_ = std::min({k_, sx_, sy_});
         for (const Mesh& e : sw_.elements) {
-            swatch_element_area_.push_back(mesh_area(e));
             const Box3 b = bounding_box(e);
             element_diag_ = std::max(element_diag_, std::hypot(b.size().x(), b.size().y()));
         }
@@ -614,7 +613,9 @@ private:
             if (!to_surface(m, flat, locator, hs, anchors)) return false;
             *embedded = embed_element(*anchors, m.faces);
             if (!fresh || source < 0 || height_scale_ > 0) return true;
-            const double want = swatch_element_area_[static_cast<std::size_t>(source)] * scale_ * scale_ * local * local;
+            // What the map did to this element's area (not what deformation did: that was the kernel's
+            // choice, bounded there).
+            const double want = mesh_area(m) * scale_ * scale_ * local * local;
             const double ratio = mesh_area(*embedded) / std::max(want, 1e-300);
             if (ratio < kMaxSizeDrift && ratio > 1.0 / kMaxSizeDrift) return true;
             Mesh fixed = m;
@@ -825,7 +826,6 @@ private:
     int sx_ = 0, sy_ = 0, k_ = 0;
     int symmetry_ = 4;
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
-    std::vector<double> swatch_element_area_;
     double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
     double diagonal_ = 0.0, scale_ = 1.0, height_scale_ = 0.0, min_field_scale_ = 1.0;
     Base base_;
