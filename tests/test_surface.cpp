@@ -317,6 +317,21 @@ TEST(Surface, AnchorsReproduceTheEmbeddedVertices) {
     EXPECT_LT(worst, 0.02) << "vertices drift sideways from their anchors";
 }
 
+TEST(Surface, HeightOptionSetsTheShellHeight) {
+    const Mesh base = isect::icosphere(1.0, 3);
+    mq::SurfaceQuiltOptions o;
+    o.scale = 0.25;
+    o.height = 0.12;
+    const mq::SurfaceQuiltResult r = mq::quilt_surface(base, mq::read_mesh(swatch_path("rivets")), o);
+    ASSERT_GT(r.report.elements, 20);
+    double top = 0.0, top_anchor = 0.0;
+    for (const Vec3& v : r.mesh.vertices) top = std::max(top, v.norm() - 1.0);
+    for (const auto& a : r.anchors) top_anchor = std::max(top_anchor, a.height);
+    EXPECT_NEAR(top_anchor, 0.12, 0.012);  // the tallest rivet reaches the shell's top
+    EXPECT_LT(top, 0.125);                 // nothing beyond it (the icosphere's faces lie inside the unit sphere)
+    EXPECT_GT(r.surface.region_density_min, 0.8);  // density compared with the swatch stretched alike
+}
+
 TEST(Surface, SameSeedSameOutputOtherSeedOtherOutput) {
     const Mesh base = mq::read_mesh(data_path("eight.obj"));
     const Mesh sw = mq::read_mesh(swatch_path("rivets"));

@@ -756,7 +756,11 @@ private:
         r.elements = static_cast<int>(result.source_element.size());
         r.cell_size = cell_;
         const double mx = 0.15 * sw_.box.size().x(), my = 0.15 * sw_.box.size().y();
-        r.swatch_density = quilt::window_density(sw_.mesh, mx, my, sw_.box.size().x() - mx, sw_.box.size().y() - my);
+        // With --height the elements are stretched in height: compare with the swatch stretched alike.
+        Mesh reference = sw_.mesh;
+        if (height_scale_ > 0)
+            for (Vec3& v : reference.vertices) v.z() *= height_scale_ / scale_;
+        r.swatch_density = quilt::window_density(reference, mx, my, sw_.box.size().x() - mx, sw_.box.size().y() - my);
         r.output_density = mesh_area(result.mesh) / std::max(base_.total_area, 1e-300);
         for (const auto& [phase, n] : phase_count_) r.largest_translation_share = std::max(r.largest_translation_share, n);
         for (const auto& [stage, s] : stage_seconds_) r.seconds.emplace_back(stage, s);
