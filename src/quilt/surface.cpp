@@ -120,6 +120,7 @@ public:
         score_.assign(F, 0);
         elems_on_face_.assign(F, {});
         face_slot_.assign(F, -1);
+        frame_dir_.assign(F, Vec3::Zero());
         std::size_t done = 0;
         const std::size_t max_steps = 4 * F + 16;
         for (std::size_t step = 0; step < max_steps && done < F; ++step) {
@@ -291,6 +292,32 @@ private:
         return p;
     }
 
+    /// A tangent vector on base face `flat.faces[lf]` in the patch's flat coordinates (through the
+    /// face's affine map).
+    Vec2 to_flat(const quilt::FlatPatch& flat, std::size_t lf, const Vec3& v) const {
+        const Tri& t = base_.mesh.faces[static_cast<std::size_t>(flat.faces[lf])];
+        const Tri& lt = flat.local[lf];
+        Eigen::Matrix<double, 3, 2> E;
+        E << base_.mesh.vertices[static_cast<std::size_t>(t[1])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])],
+            base_.mesh.vertices[static_cast<std::size_t>(t[2])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])];
+        const Eigen::Vector2d ab = E.colPivHouseholderQr().solve(v);
+        return ab[0] * (flat.uv[static_cast<std::size_t>(lt[1])] - flat.uv[static_cast<std::size_t>(lt[0])]) +
+               ab[1] * (flat.uv[static_cast<std::size_t>(lt[2])] - flat.uv[static_cast<std::size_t>(lt[0])]);
+    }
+
+    /// The 3D direction of the patch frame's +x axis on base face `flat.faces[lf]`.
+    Vec3 frame_x_on(const quilt::FlatPatch& flat, std::size_t lf) const {
+        const Tri& t = base_.mesh.faces[static_cast<std::size_t>(flat.faces[lf])];
+        const Tri& lt = flat.local[lf];
+        Eigen::Matrix2d U;
+        U << flat.uv[static_cast<std::size_t>(lt[1])] - flat.uv[static_cast<std::size_t>(lt[0])],
+            flat.uv[static_cast<std::size_t>(lt[2])] - flat.uv[static_cast<std::size_t>(lt[0])];
+        const Eigen::Vector2d ab = U.colPivHouseholderQr().solve(Eigen::Vector2d(1.0, 0.0));
+        const Vec3 d = ab[0] * (base_.mesh.vertices[static_cast<std::size_t>(t[1])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])]) +
+                       ab[1] * (base_.mesh.vertices[static_cast<std::size_t>(t[2])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])]);
+        return d.allFinite() && d.norm() > 0 ? Vec3(d.normalized()) : Vec3::Zero();
+    }
+
     /// Patch frame: flat coordinates (swatch units, seed centroid at the origin, field along +x).
     struct Frame {
         quilt::FlatPatch flat;  ///< uv already in the patch frame
@@ -324,25 +351,39 @@ private:
         if (!ok && !quilt::flatten_lscm(base_.mesh, {seed}, &flat)) return false;  // the seed alone is always flat
         const Vec3 c0 = base_.centroid[static_cast<std::size_t>(seed)];
         // Orientation: the N-th power average of the field over faces near the seed, in flat
-        // coordinates, goes to +x. Origin: the seed's centroid.
+        // coordinates, goes to +x. Of its N directions we take the one closest to the frames of the
+        // patches already placed around (recorded per face): a swatch is rarely truly N-symmetric
+        // (chain mail rows have a direction), and a frame turned by 360/N degrees against its
+        // neighbours would not match their lattice. Origin: the seed's centroid.
         const int N = symmetry_;
-        std::complex<double> sum = 0.0;
+        std::complex<double> sum = 0.0, previous = 0.0;
         for (std::size_t lf = 0; lf < flat.faces.size(); ++lf) {
             const auto f = static_cast<std::size_t>(flat.faces[lf]);
-            if ((base_.centroid[f] - c0).norm() > 0.35 * diag && static_cast<int>(f) != seed) continue;
-            const Tri& t = base_.mesh.faces[f];
-            const Tri& lt = flat.local[lf];
-            const Vec3 e1 = base_.mesh.vertices[static_cast<std::size_t>(t[1])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])];
-            const Vec3 e2 = base_.mesh.vertices[static_cast<std::size_t>(t[2])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])];
-            Eigen::Matrix<double, 3, 2> E;
-            E << e1, e2;
-            const Eigen::Vector2d ab = E.colPivHouseholderQr().solve(direction_[f]);
-            const Vec2 d = ab[0] * (flat.uv[static_cast<std::size_t>(lt[1])] - flat.uv[static_cast<std::size_t>(lt[0])]) +
-                           ab[1] * (flat.uv[static_cast<std::size_t>(lt[2])] - flat.uv[static_cast<std::size_t>(lt[0])]);
-            if (d.norm() == 0.0 || !d.allFinite()) continue;
-            sum += base_.area[f] * std::polar(1.0, N * std::atan2(d.y(), d.x()));
+            const bool near_seed = (base_.centroid[f] - c0).norm() <= 0.35 * diag || static_cast<int>(f) == seed;
+            if (!near_seed && frame_dir_[f].squaredNorm() == 0.0) continue;
+            if (near_seed) {
+                const Vec2 d = to_flat(flat, lf, direction_[f]);
+                if (d.norm() > 0.0 && d.allFinite()) sum += base_.area[f] * std::polar(1.0, N * std::atan2(d.y(), d.x()));
+            }
+            if (frame_dir_[f].squaredNorm() > 0.0) {
+                const Vec2 d = to_flat(flat, lf, frame_dir_[f]);
+                if (d.norm() > 0.0 && d.allFinite()) previous += base_.area[f] * std::polar(1.0, std::atan2(d.y(), d.x()));
+            }
         }
-        const double angle = std::abs(sum) > 0 ? std::arg(sum) / N : 0.0;
+        double angle = std::abs(sum) > 0 ? std::arg(sum) / N : 0.0;
+        if (std::abs(previous) > 0) {
+            const double ref = std::arg(previous);
+            double best = angle, best_gap = 1e300;
+            for (int k = 0; k < N; ++k) {
+                const double a = angle + 2.0 * M_PI * k / N;
+                const double gap = std::fabs(std::remainder(a - ref, 2.0 * M_PI));
+                if (gap < best_gap) {
+                    best_gap = gap;
+                    best = a;
+                }
+            }
+            angle = best;
+        }
         // Scale: flat area equals 3D area near the seed, where the swatch goes (LSCM is conformal,
         // so the scale varies over the patch; matching it at the centre keeps elements true to size).
         double flat_area = 0.0, true_area = 0.0;
@@ -488,6 +529,8 @@ private:
                 mark_processed(f);
                 ++newly;
             }
+            const int slot = face_slot_[static_cast<std::size_t>(f)];
+            if (slot >= 0) frame_dir_[static_cast<std::size_t>(f)] = frame_x_on(flat, static_cast<std::size_t>(slot));
         };
         mark(seed);
         // Faces under the footprint are processed, except near the patch's cut (where the patch
@@ -838,6 +881,7 @@ private:
     std::vector<char> processed_;
     std::vector<int> score_;
     std::vector<int> face_slot_;
+    std::vector<Vec3> frame_dir_;  ///< per base face: +x of the frame of the patch that processed it
     std::vector<std::vector<int>> elems_on_face_;
     std::vector<SurfElement> elems_;
     ElementCollider collider_;
