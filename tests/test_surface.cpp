@@ -118,15 +118,42 @@ std::pair<double, double> region_density(const SurfaceRun& run) {
     auto key = [&](const Vec3& p) {
         return std::array<long, 3>{std::lround(std::floor(p.x() / cell)), std::lround(std::floor(p.y() / cell)), std::lround(std::floor(p.z() / cell))};
     };
+    // On an open base, elements stay whole and on the base, so a strip along the boundary as wide as
+    // half the largest element is necessarily bare: it is left out (as the planar measure insets
+    // its window).
+    std::map<std::pair<int, int>, int> edge_count;
+    for (const auto& t : base.faces)
+        for (int k = 0; k < 3; ++k) ++edge_count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+    std::vector<Vec3> rim;
+    for (const auto& [e, n] : edge_count)
+        if (n == 1) rim.push_back(0.5 * (base.vertices[static_cast<std::size_t>(e.first)] + base.vertices[static_cast<std::size_t>(e.second)]));
+    double element_diag = 0.0;
+    {
+        int n = 0;
+        const std::vector<int> comp = mq::connected_components(sw, &n);
+        std::vector<mq::Box3> boxes(static_cast<std::size_t>(n));
+        for (std::size_t f = 0; f < sw.faces.size(); ++f)
+            for (int k = 0; k < 3; ++k) boxes[static_cast<std::size_t>(comp[f])].extend(sw.vertices[sw.faces[f][k]]);
+        for (const auto& b : boxes) element_diag = std::max(element_diag, std::hypot(b.size().x(), b.size().y()));
+    }
+    const double strip = 0.5 * element_diag * s;
     std::map<std::array<long, 3>, std::pair<double, double>> cells;  // base area, element area
     std::vector<std::array<long, 3>> key_of_face(base.faces.size());
+    std::vector<char> in_strip(base.faces.size(), 0);
     for (std::size_t f = 0; f < base.faces.size(); ++f) {
         const Vec3 c = (base.vertices[base.faces[f][0]] + base.vertices[base.faces[f][1]] + base.vertices[base.faces[f][2]]) / 3.0;
+        for (const Vec3& q : rim)
+            if ((q - c).norm() < strip) {
+                in_strip[f] = 1;
+                break;
+            }
         key_of_face[f] = key(c);
-        cells[key_of_face[f]].first += face_area(base, f);
+        if (!in_strip[f]) cells[key_of_face[f]].first += face_area(base, f);
     }
-    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f)
-        cells[key_of_face[static_cast<std::size_t>(r.anchors[static_cast<std::size_t>(r.mesh.faces[f][0])].face)]].second += face_area(r.mesh, f);
+    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f) {
+        const auto bf = static_cast<std::size_t>(r.anchors[static_cast<std::size_t>(r.mesh.faces[f][0])].face);
+        if (!in_strip[bf]) cells[key_of_face[bf]].second += face_area(r.mesh, f);
+    }
     double lo = 1e300, hi = 0.0;
     int counted = 0;
     for (const auto& [k, v] : cells) {
@@ -227,6 +254,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BaseCase{"torus", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "rivets", 0.2},
                       BaseCase{"eight", [] { return mq::read_mesh(data_path("eight.obj")); }, "rivets", 0.2},
                       BaseCase{"spot", [] { return mq::read_mesh(data_path("spot.obj")); }, "rivets", 0.2},
+                      BaseCase{"cylinder_chainmail", [] { return shapes::open_cylinder(1.0, 2.0, 64, 32); }, "chainmail", 0.2},
                       BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22, false},
                       BaseCase{"cube", [] { return shapes::cube(2.0); }, "rivets", 0.25, false},
                       BaseCase{"eight_chainmail", [] { return mq::read_mesh(data_path("eight.obj")); }, "chainmail", 0.2, false}),
