@@ -177,24 +177,7 @@ TEST(PlanarQuiltWeave, ThreadsAreStitchedAcrossPatches) {
 
 // Chain mail stays chain mail: away from the border every ring interlocks with as many rings as the
 // interior rings of the swatch do (Gauss linking numbers of the ring centre lines).
-std::map<int, int> link_counts(const std::vector<Mesh>& rings, double diameter) {
-    std::vector<std::vector<Vec3>> lines;
-    std::vector<Vec3> centres;
-    for (const Mesh& r : rings) {
-        lines.push_back(mq::test::ring_centerline(r));
-        centres.push_back(centroid(r));
-    }
-    std::map<int, int> count;
-    for (std::size_t i = 0; i < rings.size(); ++i)
-        for (std::size_t j = i + 1; j < rings.size(); ++j) {
-            if ((centres[i] - centres[j]).norm() > 1.5 * diameter) continue;
-            if (std::lround(std::abs(mq::test::linking_number(lines[i], lines[j]))) == 1) {
-                ++count[static_cast<int>(i)];
-                ++count[static_cast<int>(j)];
-            }
-        }
-    return count;
-}
+std::map<int, int> link_counts(const std::vector<Mesh>& rings, double diameter) { return mq::test::link_counts(rings, 1.5 * diameter); }
 
 class PlanarChainmail : public ::testing::TestWithParam<int> {};
 

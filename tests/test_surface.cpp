@@ -296,6 +296,40 @@ TEST(Surface, SeveralComponentsAreAllCovered) {
     EXPECT_GT(near_large, 10);
 }
 
+TEST(Surface, ChainMailOnACylinderStaysChainMail) {
+    // Away from the rims, most rings interlock with as many rings as the swatch's interior rings (4).
+    const Mesh swatch = mq::read_mesh(swatch_path("chainmail"));
+    const SurfaceRun run = quilt(shapes::open_cylinder(1.0, 2.0, 64, 32), swatch, 0.2);
+    expect_whole_and_disjoint(run);
+    double diameter = 0.0;
+    const Mesh sw = mq::normalize_swatch(swatch);
+    int n = 0;
+    const std::vector<int> comp = mq::connected_components(sw, &n);
+    for (const Mesh& r : mq::test::split_elements(sw, comp)) {
+        const mq::Box3 b = mq::bounding_box(r);
+        diameter = std::max({diameter, b.size().x(), b.size().y()});
+    }
+    diameter *= run.r.surface.base_scale;
+    const auto rings = mq::test::split_elements(run.r.mesh, run.r.element_of_face);
+    const auto links = mq::test::link_counts(rings, 1.5 * diameter);
+    int interior = 0, four = 0;
+    std::map<int, int> histogram;
+    for (std::size_t i = 0; i < rings.size(); ++i) {
+        const double z = element_centroid(rings[i]).z();
+        if (z < 1.5 * diameter || z > 2.0 - 1.5 * diameter) continue;
+        ++interior;
+        const int c = links.count(static_cast<int>(i)) ? links.at(static_cast<int>(i)) : 0;
+        ++histogram[c];
+        four += c == 4;
+    }
+    std::string h;
+    for (const auto& [c, k] : histogram) h += std::to_string(k) + " rings with " + std::to_string(c) + " links; ";
+    ASSERT_GT(interior, 50);
+    RecordProperty("links", h);
+    std::printf("cylinder chain mail: %s\n", h.c_str());
+    EXPECT_GE(four, 0.85 * interior) << h;  // measured: 847 of 923 (92%)
+}
+
 TEST(Surface, InsideOutBaseIsFlippedWithAWarningAndDecoratedOutside) {
     const Mesh base = shapes::flipped(isect::icosphere(1.0, 3));
     const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("pebbles")), 0.25);

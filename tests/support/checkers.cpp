@@ -326,4 +326,25 @@ int rounded_linking(const Mesh& ring_a, const Mesh& ring_b) {
     return static_cast<int>(std::lround(linking_number(ring_centerline(ring_a), ring_centerline(ring_b))));
 }
 
+std::map<int, int> link_counts(const std::vector<Mesh>& rings, double reach) {
+    std::vector<std::vector<Vec3>> lines;
+    std::vector<Vec3> centres;
+    for (const Mesh& r : rings) {
+        lines.push_back(ring_centerline(r));
+        Vec3 c = Vec3::Zero();
+        for (const Vec3& v : r.vertices) c += v;
+        centres.push_back(c / static_cast<double>(std::max<std::size_t>(1, r.vertices.size())));
+    }
+    std::map<int, int> count;
+    for (std::size_t i = 0; i < rings.size(); ++i)
+        for (std::size_t j = i + 1; j < rings.size(); ++j) {
+            if ((centres[i] - centres[j]).norm() > reach) continue;
+            if (std::lround(std::abs(linking_number(lines[i], lines[j]))) == 1) {
+                ++count[static_cast<int>(i)];
+                ++count[static_cast<int>(j)];
+            }
+        }
+    return count;
+}
+
 }  // namespace meshquilt::test

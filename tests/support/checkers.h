@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -53,5 +54,9 @@ double linking_number(const std::vector<Vec3>& closed_a, const std::vector<Vec3>
 
 /// The linking number of the centre lines of two ring-like elements, rounded to an integer.
 int rounded_linking(const Mesh& ring_a, const Mesh& ring_b);
+
+/// For ring-like elements: how many other rings each one interlocks with (|linking number| = 1),
+/// testing pairs whose vertex centroids are within `reach`. Rings without a link are absent.
+std::map<int, int> link_counts(const std::vector<Mesh>& rings, double reach);
 
 }  // namespace meshquilt::test
