@@ -41,7 +41,7 @@ constexpr double kMaxBaseFaces = 4e6;
 constexpr double kMaxDistortion = 2.0;
 /// New elements whose embedded area differs from their swatch element's (scaled) by more than this
 /// factor are rescaled.
-constexpr double kMaxSizeDrift = 1.1;
+constexpr double kMaxSizeDrift = 1.02;
 
 /// The base as the synthesis uses it: exact duplicate vertices welded, closed inside-out components
 /// flipped, long edges split.
