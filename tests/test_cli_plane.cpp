@@ -1,6 +1,8 @@
 // labels: e2e
 // The `meshquilt plane` command as a user runs it: exit codes, messages, atomic output, determinism.
 
+#include "support/cli_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -15,32 +17,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string err;
-};
+using Outcome = meshquilt::test::CliOutcome;
+using meshquilt::test::slurp;
 
-/// Runs the CLI with `args`, capturing stderr.
-Outcome run(const std::string& args) {
-    const fs::path errfile = fs::temp_directory_path() / ("mq_cli_err_" + std::to_string(::getpid()) + ".txt");
-    const std::string cmd = std::string(MQ_CLI_PATH) + " " + args + " 2>" + errfile.string() + " >/dev/null";
-    const int status = std::system(cmd.c_str());
-    Outcome o;
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errfile);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    o.err = ss.str();
-    fs::remove(errfile);
-    return o;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+Outcome run(const std::string& args) { return meshquilt::test::run_cli(args); }
 
 class CliPlane : public ::testing::Test {
 protected:

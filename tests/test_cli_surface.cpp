@@ -2,6 +2,8 @@
 // The main job as a user runs it, `meshquilt BASE SWATCH -o OUT`: exit codes, messages, groups,
 // report, atomic output, determinism.
 
+#include "support/cli_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -16,31 +18,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code = -1;
-    std::string err;
-};
+using Outcome = meshquilt::test::CliOutcome;
+using meshquilt::test::slurp;
 
-Outcome run(const std::string& args) {
-    const fs::path errfile = fs::temp_directory_path() / ("mq_cli_surface_err_" + std::to_string(::getpid()) + ".txt");
-    const std::string cmd = std::string(MQ_CLI_PATH) + " " + args + " 2>" + errfile.string() + " >/dev/null";
-    const int status = std::system(cmd.c_str());
-    Outcome o;
-    o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errfile);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    o.err = ss.str();
-    fs::remove(errfile);
-    return o;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+Outcome run(const std::string& args) { return meshquilt::test::run_cli(args); }
 
 int count(const std::string& text, const std::string& what) {
     int n = 0;

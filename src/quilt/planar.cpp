@@ -43,15 +43,10 @@ using quilt::SwatchData;
 using quilt::translated;
 using quilt::window_density;
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// Largest output we attempt, in faces (about 2-3 GB of memory and some minutes).
-constexpr double kMaxOutputFaces = 20e6;
-
-/// Inset of the density window, as a fraction of the swatch's sides.
-constexpr double kDensityInset = 0.15;
+using quilt::Clock;
+using quilt::kDensityInset;
+using quilt::kMaxOutputFaces;
+using quilt::seconds_since;
 
 /// Output grid with a margin of cells around the footprint, so that placements near the border
 /// keep track of what they cover.

@@ -29,12 +29,12 @@ namespace {
 
 using quilt::area_centroid;
 using quilt::mesh_area;
+using quilt::Clock;
+using quilt::kDensityInset;
+using quilt::kMaxOutputFaces;
 using quilt::num;
-using Clock = std::chrono::steady_clock;
+using quilt::seconds_since;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-constexpr double kMaxOutputFaces = 20e6;
 constexpr double kMaxBaseFaces = 4e6;
 /// Patches whose LSCM map distorts area by more than this (98th over 2nd percentile) shrink. The
 /// paper allows 4; elements then vary in size by up to 2x, so we hold the map to 2.
@@ -798,7 +798,7 @@ private:
         r.vertices = static_cast<int>(result.mesh.vertices.size());
         r.elements = static_cast<int>(result.source_element.size());
         r.cell_size = cell_;
-        const double mx = 0.15 * sw_.box.size().x(), my = 0.15 * sw_.box.size().y();
+        const double mx = kDensityInset * sw_.box.size().x(), my = kDensityInset * sw_.box.size().y();
         // With --height the elements are stretched in height: compare with the swatch stretched alike.
         Mesh reference = sw_.mesh;
         if (height_scale_ > 0)

@@ -7,6 +7,7 @@
 #include "meshquilt/mesh.h"
 #include "quilt/match.h"
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,16 @@ SwatchData prepare_swatch(const Mesh& input);
 
 /// A number for messages: 6 significant digits, no trailing zeros.
 std::string num(double v);
+
+/// Largest output either stage attempts, in faces (about 2-3 GB of memory and some minutes).
+inline constexpr double kMaxOutputFaces = 20e6;
+
+/// Inset of the density window, as a fraction of the swatch's sides (the swatch's margins are
+/// ragged).
+inline constexpr double kDensityInset = 0.15;
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 double mesh_area(const Mesh& m);
 /// Area-weighted centroid of the faces (the box corner for a mesh without area).
