@@ -40,7 +40,6 @@ using quilt::area_centroid;
 using quilt::mesh_area;
 using quilt::num;
 using quilt::SwatchData;
-using quilt::translated;
 using quilt::window_density;
 
 using quilt::Clock;
@@ -212,27 +211,16 @@ private:
                 if (p.x() >= px0 && p.x() < px1 && p.y() >= py0 && p.y() < py1) samples.push_back({p, n[v]});
             }
         }
-        // Whole-cell translations that cover P_out completely (Section 2.4).
-        std::vector<Vec2> cands;
-        for (int tj = pj0 + k_ - sy_; tj <= pj0; ++tj)
-            for (int ti = pi0 + k_ - sx_; ti <= pi0; ++ti) cands.emplace_back(ti * cell_, tj * cell_);
-        const quilt::MatchChoice choice = quilt::choose_translation(index_, params_.metric, samples, cands, opt_.tolerance, rng_);
-        const int ti = static_cast<int>(std::lround(choice.translation.x() / cell_));
-        const int tj = static_cast<int>(std::lround(choice.translation.y() / cell_));
+        // Whole-cell translations that cover P_out completely (Section 2.4), and the placed patch.
+        quilt::Placement pl = quilt::place_swatch(sw_, index_, params_.metric, samples, pi0, pj0, k_, sx_, sy_, cell_, opt_.tolerance, rng_);
+        const int ti = pl.ti, tj = pl.tj;
         ++phase_count_[{((ti % sx_) + sx_) % sx_, ((tj % sy_) + sy_) % sy_}];
-        const Vec2 t = quilt::refine_translation(index_, params_.metric, samples, choice.translation, 0.5 * cell_);
+        std::vector<quilt::NewElement> fresh = std::move(pl.fresh);
         stage_seconds_["matching"] += seconds_since(t0);
         t0 = Clock::now();
 
-        // The placed patch and the overlapping region.
-        const Vec3 shift(t.x(), t.y(), 0.0);
+        // The overlapping region.
         const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
-        std::vector<quilt::NewElement> fresh;
-        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
-            const Vec3 c = area_centroid(sw_.elements[e]);
-            if (c.x() < 0 || c.y() < 0 || c.x() >= sx_ * cell_ || c.y() >= sy_ * cell_) continue;
-            fresh.push_back({static_cast<int>(e), translated(sw_.elements[e], shift)});
-        }
         const Grid& g = grid_;
         quilt::Overlap overlap;
         overlap.old_side = [fx0, fy0, fx1, fy1](double x, double y) { return x >= fx0 && x < fx1 && y >= fy0 && y < fy1; };
@@ -362,16 +350,8 @@ private:
         std::vector<const Mesh*> kept_meshes;
         for (int id : kept) kept_meshes.push_back(&elems_[static_cast<std::size_t>(id)].mesh);
         std::vector<char> drop(kept.size(), 0);
-        if (swatch_elements_disjoint()) {
-            const ElementMesh all = concatenate(kept_meshes);
-            for (const auto& [a, b] : intersecting_element_pairs(all.mesh, all.element_of_face)) {
-                if (drop[static_cast<std::size_t>(a)] || drop[static_cast<std::size_t>(b)]) continue;
-                const std::size_t fa = elems_[static_cast<std::size_t>(kept[static_cast<std::size_t>(a)])].mesh.faces.size();
-                const std::size_t fb = elems_[static_cast<std::size_t>(kept[static_cast<std::size_t>(b)])].mesh.faces.size();
-                drop[static_cast<std::size_t>(fa < fb ? a : b)] = 1;
-                ++report_.elements_removed;
-            }
-        }
+        if (sw_.elements_disjoint) drop = quilt::intersecting_to_remove(kept_meshes);
+        for (char d : drop) report_.elements_removed += d;
         std::vector<const Mesh*> final_meshes;
         for (std::size_t k = 0; k < kept.size(); ++k) {
             if (drop[k]) continue;
@@ -405,17 +385,6 @@ private:
             result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
     }
 
-    bool swatch_elements_disjoint() {
-        if (!disjoint_known_) {
-            std::vector<int> eof;
-            int n = 0;
-            eof = connected_components(sw_.mesh, &n);
-            swatch_disjoint_ = intersecting_element_pairs(sw_.mesh, eof, 1).empty();
-            disjoint_known_ = true;
-        }
-        return swatch_disjoint_;
-    }
-
     PlanarQuiltOptions opt_;
     SwatchData sw_;
     TriangleIndex index_;
@@ -430,7 +399,6 @@ private:
     std::map<std::pair<int, int>, int> phase_count_;
     std::map<std::string, double> stage_seconds_;
     std::map<std::string, int> failure_reasons_;
-    bool disjoint_known_ = false, swatch_disjoint_ = true;
 };
 
 }  // namespace

@@ -484,31 +484,23 @@ private:
         };
         for (const auto& o : old) add_samples(o.mesh);
         for (const auto& m : obstacles) add_samples(m);
-        std::vector<Vec2> cands;
-        for (int tj = pj0 + k_ - sy_; tj <= pj0; ++tj)
-            for (int ti = pi0 + k_ - sx_; ti <= pi0; ++ti) cands.emplace_back(ti * cell_, tj * cell_);
-        const quilt::MatchChoice choice = quilt::choose_translation(index_, params_.metric, samples, cands, opt_.tolerance, rng_);
-        const int ti = static_cast<int>(std::lround(choice.translation.x() / cell_));
-        const int tj = static_cast<int>(std::lround(choice.translation.y() / cell_));
-        const Vec2 t = quilt::refine_translation(index_, params_.metric, samples, choice.translation, 0.5 * cell_);
+        quilt::Placement pl = quilt::place_swatch(sw_, index_, params_.metric, samples, pi0, pj0, k_, sx_, sy_, cell_, opt_.tolerance, rng_);
+        const int ti = pl.ti, tj = pl.tj;
         stage_seconds_["matching"] += seconds_since(t0);
         t0 = Clock::now();
 
         // The placed swatch: elements that land wholly on the flattened patch.
-        const Vec3 shift(t.x(), t.y(), 0.0);
         const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
         std::vector<quilt::NewElement> fresh;
-        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
-            const Vec3 c = area_centroid(sw_.elements[e]);
-            if (c.x() < 0 || c.y() < 0 || c.x() >= sx_ * cell_ || c.y() >= sy_ * cell_) continue;
-            Mesh m = quilt::translated(sw_.elements[e], shift);
+        for (quilt::NewElement& ne : pl.fresh) {
+            const Mesh& m = ne.mesh;
             bool inside = true;
             for (const Vec3& v : m.vertices)
                 if (!locator.locate(v.head<2>(), 0.0).inside) {
                     inside = false;
                     break;
                 }
-            if (inside) fresh.push_back({static_cast<int>(e), std::move(m)});
+            if (inside) fresh.push_back(std::move(ne));
         }
         quilt::Overlap overlap;
         overlap.old_side = [fx0, fy0, fx1, fy1](double x, double y) { return x >= fx0 && x < fx1 && y >= fy0 && y < fy1; };
@@ -766,18 +758,12 @@ private:
             }
             kept.push_back(static_cast<int>(id));
         }
+        // Elements that still intersect another (the swatch's own did not) are removed, smaller first.
+        std::vector<const Mesh*> kept_meshes;
+        for (int id : kept) kept_meshes.push_back(&elems_[static_cast<std::size_t>(id)].embedded);
         std::vector<char> drop(kept.size(), 0);
-        if (swatch_elements_disjoint()) {
-            std::vector<const Mesh*> meshes;
-            for (int id : kept) meshes.push_back(&elems_[static_cast<std::size_t>(id)].embedded);
-            const ElementMesh all = concatenate(meshes);
-            for (const auto& [a, b] : intersecting_element_pairs(all.mesh, all.element_of_face)) {
-                if (drop[static_cast<std::size_t>(a)] || drop[static_cast<std::size_t>(b)]) continue;
-                const std::size_t fa = meshes[static_cast<std::size_t>(a)]->faces.size(), fb = meshes[static_cast<std::size_t>(b)]->faces.size();
-                drop[static_cast<std::size_t>(fa < fb ? a : b)] = 1;
-                ++report_.elements_removed;
-            }
-        }
+        if (sw_.elements_disjoint) drop = quilt::intersecting_to_remove(kept_meshes);
+        for (char d : drop) report_.elements_removed += d;
         std::vector<const Mesh*> final_meshes;
         for (std::size_t k = 0; k < kept.size(); ++k) {
             if (drop[k]) continue;
@@ -858,11 +844,6 @@ private:
         surface_.regions = counted;
         surface_.region_density_min = counted ? lo : 0.0;
         surface_.region_density_max = counted ? hi : 0.0;
-    }
-
-    bool swatch_elements_disjoint() {
-        std::vector<int> eof = connected_components(sw_.mesh);
-        return intersecting_element_pairs(sw_.mesh, eof, 1).empty();
     }
 
     SurfaceQuiltOptions opt_;

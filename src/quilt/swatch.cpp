@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "quilt/swatch.h"
 
+#include "core/intersect.h"
 #include "meshquilt/analysis.h"
 #include "meshquilt/quilt.h"
 #include "quilt/kernel.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -78,6 +80,7 @@ SwatchData prepare_swatch(const Mesh& input) {
         s.element_closed.push_back(quilt::is_closed_oriented(e));
         s.elements.push_back(std::move(e));
     }
+    s.elements_disjoint = intersecting_element_pairs(s.mesh, comp, 1).empty();
     double len = 0.0;
     for (const Tri& f : s.mesh.faces)
         for (int k = 0; k < 3; ++k) len += (s.mesh.vertices[f[k]] - s.mesh.vertices[f[(k + 1) % 3]]).norm();
@@ -112,6 +115,37 @@ Vec2 refine_translation(const TriangleIndex& index, const MatchMetric& metric, c
         if (moved < 1e-3 * metric.unit) break;
     }
     return t;
+}
+
+Placement place_swatch(const SwatchData& swatch, const TriangleIndex& index, const MatchMetric& metric,
+                       const std::vector<Sample>& samples, int pi0, int pj0, int k, int sx, int sy, double cell, double tolerance,
+                       std::mt19937_64& rng) {
+    std::vector<Vec2> cands;
+    for (int tj = pj0 + k - sy; tj <= pj0; ++tj)
+        for (int ti = pi0 + k - sx; ti <= pi0; ++ti) cands.emplace_back(ti * cell, tj * cell);
+    const MatchChoice choice = choose_translation(index, metric, samples, cands, tolerance, rng);
+    Placement p;
+    p.ti = static_cast<int>(std::lround(choice.translation.x() / cell));
+    p.tj = static_cast<int>(std::lround(choice.translation.y() / cell));
+    p.translation = refine_translation(index, metric, samples, choice.translation, 0.5 * cell);
+    const Vec3 shift(p.translation.x(), p.translation.y(), 0.0);
+    for (std::size_t e = 0; e < swatch.elements.size(); ++e) {
+        const Vec3 c = area_centroid(swatch.elements[e]);
+        if (c.x() < 0 || c.y() < 0 || c.x() >= sx * cell || c.y() >= sy * cell) continue;
+        p.fresh.push_back({static_cast<int>(e), translated(swatch.elements[e], shift)});
+    }
+    return p;
+}
+
+std::vector<char> intersecting_to_remove(const std::vector<const Mesh*>& elements) {
+    std::vector<char> drop(elements.size(), 0);
+    const ElementMesh all = concatenate(elements);
+    for (const auto& [a, b] : intersecting_element_pairs(all.mesh, all.element_of_face)) {
+        const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+        if (drop[ia] || drop[ib]) continue;
+        drop[elements[ia]->faces.size() < elements[ib]->faces.size() ? ia : ib] = 1;
+    }
+    return drop;
 }
 
 }  // namespace meshquilt::quilt

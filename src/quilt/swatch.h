@@ -5,9 +5,11 @@
 
 #include "core/triangle_index.h"
 #include "meshquilt/mesh.h"
+#include "quilt/kernel.h"
 #include "quilt/match.h"
 
 #include <chrono>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,7 @@ struct SwatchData {
     double mean_edge = 0.0;
     double area = 0.0;
     Box3 box;
+    bool elements_disjoint = true;  ///< no two swatch elements intersect (then none may in the output)
 };
 
 SwatchData prepare_swatch(const Mesh& input);
@@ -51,5 +54,21 @@ double window_density(const Mesh& m, double x0, double y0, double x1, double y1)
 /// up exactly instead of within half a cell; element deformation then has less to correct.
 Vec2 refine_translation(const TriangleIndex& swatch, const MatchMetric& metric, const std::vector<Sample>& samples,
                         const Vec2& start, double max_offset);
+
+/// One placement of the swatch around a seed, in a frame where the output's grid cells have side
+/// `cell` (Section 2.4): the sub-patch P_out is the k x k cells from cell (pi0, pj0); every whole-cell
+/// translation whose footprint covers it is a candidate; the chosen one is refined by ICP.
+struct Placement {
+    int ti = 0, tj = 0;                     ///< the whole-cell translation chosen, in cells
+    Vec2 translation = Vec2::Zero();        ///< after refinement
+    std::vector<NewElement> fresh;          ///< swatch elements (centroid inside the footprint) moved there
+};
+Placement place_swatch(const SwatchData& swatch, const TriangleIndex& index, const MatchMetric& metric,
+                       const std::vector<Sample>& samples, int pi0, int pj0, int k, int sx, int sy, double cell, double tolerance,
+                       std::mt19937_64& rng);
+
+/// The elements to remove so that no two of `elements` intersect (exact tests): of each
+/// intersecting pair, the one with fewer faces (unless one of the pair is already removed).
+std::vector<char> intersecting_to_remove(const std::vector<const Mesh*>& elements);
 
 }  // namespace meshquilt::quilt
