@@ -10,20 +10,16 @@
 #include "meshquilt/io.h"
 #include "meshquilt/quilt.h"
 
+#include "bench_util.h"
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <sys/resource.h>
 
 namespace mq = meshquilt;
+using meshquilt::bench::peak_rss_mb;
 
 namespace {
-
-double peak_rss_mb() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return static_cast<double>(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
-}
 
 void run_row(benchmark::State& state, const char* swatch_name, double target_faces) {
     const mq::Mesh swatch = mq::normalize_swatch(mq::read_mesh(std::string(MQ_SWATCH_DIR) + "/" + swatch_name + ".obj"));

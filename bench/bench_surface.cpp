@@ -18,22 +18,18 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include "bench_util.h"
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <sys/resource.h>
 
 namespace mq = meshquilt;
+using meshquilt::bench::peak_rss_mb;
 
 namespace {
-
-double peak_rss_mb() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return static_cast<double>(u.ru_maxrss) / 1024.0;
-}
 
 mq::Mesh decimate(const mq::Mesh& in, std::size_t faces) {
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;

@@ -61,6 +61,27 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
     EXPECT_EQ(j.at("elements_closed").get<int>(), j.at("elements").get<int>());
+    // The shell map is the default embedding; its report (issue 4).
+    EXPECT_EQ(j.at("surface").at("embedding").get<std::string>(), "shell");
+    const double before = j.at("stretch_l2_initial").get<double>(), after = j.at("stretch_l2_final").get<double>();
+    EXPECT_GE(before, 1.0);
+    EXPECT_GE(after, 1.0);
+    EXPECT_LE(after, before);
+    for (const char* key : {"tetrahedra", "charts", "height_limited_vertices", "height_limited_regions", "inverted_tetrahedra", "min_height_ratio"})
+        EXPECT_TRUE(j.at("shell").contains(key)) << key;
+    EXPECT_EQ(j.at("shell").at("inverted_tetrahedra").get<int>(), 0);
+}
+
+TEST_F(CliSurface, NormalEmbeddingOnRequestDiffersAndHasNoShellReport) {
+    const fs::path a = dir / "a.obj", b = dir / "b.obj", report = dir / "r.json";
+    const std::string common = base + " " + swatch + " --scale 0.3 --seed 2";
+    ASSERT_EQ(run(common + " -o " + a.string()).code, 0);
+    ASSERT_EQ(run(common + " --embed normal -o " + b.string() + " --report " + report.string()).code, 0);
+    EXPECT_NE(slurp(a), slurp(b));
+    const auto j = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(j.at("surface").at("embedding").get<std::string>(), "normal");
+    EXPECT_FALSE(j.contains("stretch_l2_final"));
+    EXPECT_FALSE(j.contains("shell"));
 }
 
 TEST_F(CliSurface, BadInputsExitTwoNameTheFileAndWriteNothing) {
@@ -84,7 +105,7 @@ TEST_F(CliSurface, BadInputsExitTwoNameTheFileAndWriteNothing) {
     EXPECT_NE(o.err.find("empty.obj"), std::string::npos) << o.err;
     // Absurd scales and options.
     for (const std::string& opts : {"--scale 0", "--scale -1", "--scale nan", "--scale 1e-6", "--swatch-size -2", "--height -1",
-                                    "--symmetry 5", "--embed shell", "--scale 0.1 --swatch-size 1"}) {
+                                    "--symmetry 5", "--embed bogus", "--scale 0.1 --swatch-size 1"}) {
         o = run(base + " " + swatch + " " + opts + " -o " + out.string());
         EXPECT_EQ(o.code, 2) << opts << ": " << o.err;
         EXPECT_FALSE(o.err.empty()) << opts;

@@ -7,6 +7,7 @@
 #include "meshquilt/io.h"
 #include "meshquilt/quilt.h"
 #include "support/checkers.h"
+#include "support/paths.h"
 #include "support/expect_error.h"
 
 #include <gtest/gtest.h>
@@ -18,12 +19,12 @@
 #include <string>
 
 namespace mq = meshquilt;
+using meshquilt::test::swatch_path;
 using mq::Mesh;
 using mq::Vec3;
 
 namespace {
 
-std::string swatch_path(const std::string& name) { return std::string(MQ_SWATCH_DIR) + "/" + name + ".obj"; }
 
 double area(const Mesh& m) {
     double a = 0.0;

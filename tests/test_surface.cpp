@@ -9,6 +9,7 @@
 #include "meshquilt/quilt.h"
 #include "meshquilt/surface.h"
 #include "support/checkers.h"
+#include "support/paths.h"
 #include "support/expect_error.h"
 #include "support/shapes.h"
 #include "support/shapes_isect.h"
@@ -26,6 +27,8 @@
 #include <string>
 
 namespace mq = meshquilt;
+using meshquilt::test::swatch_path;
+using meshquilt::test::surface_data_path;
 using mq::Mesh;
 using mq::Vec3;
 namespace shapes = mq::test::shapes;
@@ -33,8 +36,6 @@ namespace isect = mq::test::isect;
 
 namespace {
 
-std::string swatch_path(const std::string& name) { return std::string(MQ_SWATCH_DIR) + "/" + name + ".obj"; }
-std::string data_path(const std::string& name) { return std::string(MQ_TEST_DATA_DIR) + "/surface/" + name; }
 
 double face_area(const Mesh& m, std::size_t f) {
     const auto& t = m.faces[f];
@@ -253,12 +254,12 @@ INSTANTIATE_TEST_SUITE_P(
     Bases, SurfaceBases,
     ::testing::Values(BaseCase{"sphere", [] { return isect::icosphere(1.0, 3); }, "rivets", 0.22},
                       BaseCase{"torus", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "rivets", 0.2},
-                      BaseCase{"eight", [] { return mq::read_mesh(data_path("eight.obj")); }, "rivets", 0.2},
-                      BaseCase{"spot", [] { return mq::read_mesh(data_path("spot.obj")); }, "rivets", 0.2},
+                      BaseCase{"eight", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "rivets", 0.2},
+                      BaseCase{"spot", [] { return mq::read_mesh(surface_data_path("spot.obj")); }, "rivets", 0.2},
                       BaseCase{"cylinder_chainmail", [] { return shapes::open_cylinder(1.0, 2.0, 64, 32); }, "chainmail", 0.2},
                       BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22, false},
                       BaseCase{"cube", [] { return shapes::cube(2.0); }, "rivets", 0.25, false},
-                      BaseCase{"eight_chainmail", [] { return mq::read_mesh(data_path("eight.obj")); }, "chainmail", 0.2, false}),
+                      BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2, false}),
     [](const auto& info) { return info.param.name; });
 
 // Measured, not yet within 15% (docs/surface.md): pebbles come out 5-16% denser than the swatch
@@ -268,7 +269,7 @@ INSTANTIATE_TEST_SUITE_P(
 INSTANTIATE_TEST_SUITE_P(
     DISABLED_NotYetMet, SurfaceBases,
     ::testing::Values(BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22},
-                      BaseCase{"eight_pebbles", [] { return mq::read_mesh(data_path("eight.obj")); }, "pebbles", 0.2},
+                      BaseCase{"eight_pebbles", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "pebbles", 0.2},
                       BaseCase{"torus_cobbles", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "cobbles", 0.2}),
     [](const auto& info) { return info.param.name; });
 
@@ -396,7 +397,7 @@ TEST(Surface, HeightOptionSetsTheShellHeight) {
 }
 
 TEST(Surface, SameSeedSameOutputOtherSeedOtherOutput) {
-    const Mesh base = mq::read_mesh(data_path("eight.obj"));
+    const Mesh base = mq::read_mesh(surface_data_path("eight.obj"));
     const Mesh sw = mq::read_mesh(swatch_path("rivets"));
     const SurfaceRun a = quilt(base, sw, 0.25, 3), b = quilt(base, sw, 0.25, 3), c = quilt(base, sw, 0.25, 4);
     EXPECT_EQ(a.r.mesh.faces, b.r.mesh.faces);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // meshquilt [surface] BASE SWATCH -o OUT [--scale S | --swatch-size L] [--height H] [--field FIELD]
-//           [--symmetry N] [--seed N] [--with-base] [--embed normal] [--report REPORT.json]
+//           [--symmetry N] [--seed N] [--with-base] [--embed shell|normal] [--report REPORT.json]
 
 #include "cli.h"
 #include "meshquilt/errors.h"
@@ -16,11 +16,11 @@ namespace meshquilt::cli {
 
 namespace {
 struct SurfaceArgs {
-    std::string base, swatch, output, report, field, embed = "normal";
+    std::string base, swatch, output, report, field, embed = "shell";
     double scale = 0.08, swatch_size = 0.0, height = 0.0;
     int symmetry = 0;
     std::uint64_t seed = 1;
-    bool with_base = false, repair = false;
+    bool with_base = false, repair = false, no_optimise = false;
 };
 
 std::string num(double v) {
@@ -45,9 +45,12 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
     app->add_option("--symmetry", a->symmetry, "Rotational symmetry of the swatch for the automatic field: 1, 2, 4, 6 (default: detect)");
     app->add_option("--seed", a->seed, "Random seed: same inputs and seed give identical output")->capture_default_str();
     app->add_flag("--with-base", a->with_base, "Also write the base, as the group 'base'");
-    app->add_option("--embed", a->embed, "Embedding of the texture: 'normal' (displacement along interpolated normals)")
-        ->check(CLI::IsMember({"normal"}))
+    app->add_option("--embed", a->embed,
+                    "Embedding of the texture: 'shell' (stretch-optimised tetrahedral shell map, no cuts into concave regions) or "
+                    "'normal' (displacement along interpolated normals)")
+        ->check(CLI::IsMember({"shell", "normal"}))
         ->capture_default_str();
+    app->add_flag("--no-shell-optimisation", a->no_optimise, "Build the shell map without its stretch optimisation");
     app->add_option("--report", a->report, "Write a JSON quality report here");
     app->add_flag("--repair", a->repair, "Repair safe input problems (degenerate faces, duplicate vertices) and report them");
     commands.push_back({app, [a]() {
@@ -60,6 +63,8 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         o.height = a->height;
         o.symmetry = a->symmetry;
         o.seed = a->seed;
+        o.embedding = a->embed == "normal" ? Embedding::Normal : Embedding::Shell;
+        o.optimise_shell = !a->no_optimise;
         if (!a->field.empty()) o.field = read_guidance_field(a->field);
         o.reporter = make_cli_reporter();
         SurfaceQuiltResult r;
@@ -103,7 +108,34 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                             {"region_density_min", s.region_density_min},
                             {"region_density_max", s.region_density_max},
                             {"regions", s.regions},
-                            {"base_flipped_components", s.base_flipped_components}};
+                            {"base_flipped_components", s.base_flipped_components},
+                            {"vertices_below_base", s.vertices_below_base},
+                            {"elements_below_base", s.elements_below_base},
+                            {"embedding", s.embedding == Embedding::Shell ? "shell" : "normal"},
+                            {"shell_height", s.shell_height}};
+            if (s.embedding == Embedding::Shell) {
+                const ShellStatistics& h = s.shell;
+                j["stretch_l2_initial"] = h.stretch_l2_initial;
+                j["stretch_l2_final"] = h.stretch_l2_final;
+                nlohmann::json regions = nlohmann::json::array();
+                for (const ShellLimitedRegion& g : h.limited_regions)
+                    regions.push_back({{"centre", {g.centre.x(), g.centre.y(), g.centre.z()}}, {"vertices", g.vertices}, {"min_height_ratio", g.min_ratio}});
+                j["shell"] = {{"vertices", h.vertices},
+                              {"prisms", h.prisms},
+                              {"tetrahedra", h.tetrahedra},
+                              {"charts", h.charts},
+                              {"free_offset_vertices", h.free_offset_vertices},
+                              {"optimisation_passes", h.optimisation_passes},
+                              {"inverted_tetrahedra", h.inverted_world},
+                              {"inverted_texture_tetrahedra", h.inverted_texture},
+                              {"offset_intersections", h.offset_intersections},
+                              {"height_limited_vertices", h.height_limited_vertices},
+                              {"height_limited_area_fraction", h.limited_area_fraction},
+                              {"min_height_ratio", h.min_height_ratio},
+                              {"height_limited_regions", regions},
+                              {"seconds_build", h.seconds_build},
+                              {"seconds_optimise", h.seconds_optimise}};
+            }
             write_file_atomic(a->report, j.dump(2) + "\n");
         }
         if (!global_flags().quiet)

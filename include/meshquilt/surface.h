@@ -4,13 +4,16 @@
 /// Surface mesh quilting (Zhou et al. 2006, Section 3.1): cover an arbitrary triangle mesh (the
 /// base) with a geometric texture grown from a swatch. The planar kernel runs in local patches of
 /// the base flattened with LSCM, oriented by a direction field; output vertices are stored relative
-/// to the base and embedded by normal displacement.
+/// to the base and embedded through the stretch-optimised shell map (Section 3.2, shellmap.h) or,
+/// on request, by normal displacement.
 
 #include "meshquilt/mesh.h"
 #include "meshquilt/quilt.h"
 #include "meshquilt/reporter.h"
+#include "meshquilt/shellmap.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,6 +43,13 @@ struct GuidanceField {
 /// Reads a field file. \throw IoError unreadable; InvalidInput (with file:line) malformed
 GuidanceField read_guidance_field(const std::string& path);
 
+/// How texture space (base point, height) becomes 3D.
+enum class Embedding {
+    Shell,   ///< the stretch-optimised tetrahedral shell map (Section 3.2): heights limited where the
+             ///< base is concave or narrow, no inversions
+    Normal,  ///< displacement along interpolated vertex normals (cuts into concave regions)
+};
+
 struct SurfaceQuiltOptions {
     /// Swatch footprint's longer side as a fraction of the base's bounding-box diagonal.
     double scale = 0.08;
@@ -54,12 +64,15 @@ struct SurfaceQuiltOptions {
     double lambda = 1.0;
     double mu = 1.0;
     double tolerance = 0.1;
+    Embedding embedding = Embedding::Shell;
+    bool optimise_shell = true;  ///< run the shell map's stretch optimisation
     Reporter reporter;
 };
 
-/// Where an output vertex lives: a triangle of the (internally refined) base, barycentric
-/// coordinates of its orthogonal projection, and its height above the base along the interpolated
-/// vertex normal.
+/// Where an output vertex lives (texture space): a triangle of the (internally refined) base,
+/// barycentric coordinates on it, and a height: with the shell map, the height in the shell
+/// (0 .. shell height H; the shell map squeezes it where the offset is lower); with normal
+/// displacement, the distance along the interpolated vertex normal.
 struct SurfacePoint {
     int face = -1;
     Vec3 bary = Vec3::Zero();
@@ -81,6 +94,13 @@ struct SurfaceQualityReport {
     double region_density_max = 0.0;
     int regions = 0;
     int base_flipped_components = 0;  ///< inside-out components flipped for the synthesis
+    /// Output vertices behind the base (inner side of the closest base face, deeper than 1% of the
+    /// shell height), and elements with any: decoration cutting into the base.
+    int vertices_below_base = 0;
+    int elements_below_base = 0;
+    Embedding embedding = Embedding::Shell;
+    double shell_height = 0.0;         ///< H in base units (texture-space height of the shell)
+    ShellStatistics shell;             ///< with the shell embedding: construction, stretch, limited heights
 };
 
 struct SurfaceQuiltResult {
@@ -91,6 +111,8 @@ struct SurfaceQuiltResult {
     Mesh base;                          ///< the base as used (welded, oriented, refined); anchors refer to it
     QualityReport report;
     SurfaceQualityReport surface;
+    /// The shell map used (shell embedding only): maps `anchors` again, e.g. after editing heights.
+    std::shared_ptr<const ShellMap> shell;
     std::vector<std::string> warnings;
 };
 

@@ -23,6 +23,8 @@
 #include <random>
 #include <unordered_map>
 
+#include <tbb/parallel_for.h>
+
 namespace meshquilt {
 
 namespace {
@@ -250,6 +252,30 @@ private:
         surface_.base_faces = static_cast<int>(F);
         surface_.symmetry = symmetry_;
         surface_.base_scale = scale_;
+        surface_.embedding = opt_.embedding;
+        // The shell holds the tallest elements: the field's largest scale sets its height.
+        const double max_local = *std::max_element(local_scale_.begin(), local_scale_.end());
+        surface_.shell_height = opt_.height > 0 ? opt_.height : thickness * scale_ * max_local;
+        if (opt_.embedding == Embedding::Shell) {
+            auto t0 = Clock::now();
+            opt_.reporter.report("shell map", 0.0);
+            ShellOptions so;
+            so.height = surface_.shell_height;
+            so.optimise = opt_.optimise_shell;
+            so.seed = opt_.seed;
+            shell_ = std::make_shared<const ShellMap>(base_.mesh, so);
+            surface_.shell = shell_->statistics();
+            stage_seconds_["shell map"] += seconds_since(t0);
+            if (surface_.shell.height_limited_vertices > 0)
+                warnings_.push_back("the shell height was lowered at " + std::to_string(surface_.shell.height_limited_vertices) + " base vertices (" +
+                                    num(100.0 * surface_.shell.limited_area_fraction) + "% of the area, down to " +
+                                    num(100.0 * surface_.shell.min_height_ratio) +
+                                    "% of the height) where the base is concave or narrow; the decoration is flattened there");
+            if (surface_.shell.inverted_world > 0 || surface_.shell.offset_intersections > 0)
+                warnings_.push_back("the shell could not be made valid everywhere (" + std::to_string(surface_.shell.inverted_world) +
+                                    " inverted tetrahedra, " + std::to_string(surface_.shell.offset_intersections) +
+                                    " offset face pairs still meeting): the base is crumpled there");
+        }
     }
 
     /// The unprocessed face with the most processed faces around its corners; ties at random.
@@ -283,6 +309,7 @@ private:
     double height_scale(double local) const { return height_scale_ > 0 ? height_scale_ : scale_ * local; }
 
     Vec3 embed(const SurfacePoint& sp) const {
+        if (shell_) return shell_->map(sp);
         const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
         Vec3 p = Vec3::Zero();
         for (int k = 0; k < 3; ++k) {
@@ -745,6 +772,25 @@ private:
         e = SurfElement();
     }
 
+    /// Output vertices behind the base (on the inner side of the closest base face, deeper than 1%
+    /// of the shell height), and the elements that have any: decoration cut into the base.
+    void measure_below_base(const SurfaceQuiltResult& result) {
+        const TriangleIndex index(base_.mesh);
+        const double tolerance = 0.01 * surface_.shell_height;
+        std::vector<char> below(result.mesh.vertices.size(), 0);
+        tbb::parallel_for(std::size_t{0}, below.size(), [&](std::size_t v) {
+            const Vec3& p = result.mesh.vertices[v];
+            const ClosestHit hit = index.closest(p);
+            below[v] = hit.face >= 0 && (hit.point - p).dot(index.face_normal(hit.face)) > tolerance;
+        });
+        std::vector<char> element(static_cast<std::size_t>(result.element_of_face.empty() ? 0 : result.element_of_face.back() + 1), 0);
+        for (std::size_t f = 0; f < result.mesh.faces.size(); ++f)
+            for (int k = 0; k < 3; ++k)
+                if (below[static_cast<std::size_t>(result.mesh.faces[f][k])]) element[static_cast<std::size_t>(result.element_of_face[f])] = 1;
+        surface_.vertices_below_base = static_cast<int>(std::count(below.begin(), below.end(), 1));
+        surface_.elements_below_base = static_cast<int>(std::count(element.begin(), element.end(), 1));
+    }
+
     void finish(SurfaceQuiltResult& result) {
         auto t0 = Clock::now();
         std::vector<int> kept;
@@ -777,6 +823,8 @@ private:
         result.mesh = std::move(out.mesh);
         result.element_of_face = std::move(out.element_of_face);
         result.base = base_.mesh;
+        result.shell = shell_;
+        measure_below_base(result);
         stage_seconds_["finish"] += seconds_since(t0);
 
         QualityReport& r = report_;
@@ -855,6 +903,7 @@ private:
     int symmetry_ = 4;
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
     double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
+    std::shared_ptr<const ShellMap> shell_;
     double diagonal_ = 0.0, scale_ = 1.0, height_scale_ = 0.0, min_field_scale_ = 1.0;
     Base base_;
     std::vector<Vec3> direction_;

@@ -1,0 +1,342 @@
+// labels: property e2e
+// The tetrahedral shell map (issue 4, Zhou et al. 2006 Section 3.2): bijectivity (positive
+// tetrahedra in texture space and in 3D, before and after optimisation), the stretch measure and
+// its optimisation, limited heights in narrow concave places, a continuous map, and the end-to-end
+// claim: on a base with a narrow slot the shell keeps every element out of the base and inside the
+// shell, where normal displacement drives elements into the opposite wall.
+
+#include "meshquilt/analysis.h"
+#include "meshquilt/errors.h"
+#include "meshquilt/io.h"
+#include "meshquilt/shellmap.h"
+#include "meshquilt/surface.h"
+#include "quilt/field.h"
+#include "quilt/patch.h"
+#include "support/checkers.h"
+#include "support/paths.h"
+#include "support/expect_error.h"
+#include "support/shapes.h"
+#include "support/shapes_isect.h"
+#include "support/solid.h"
+
+#include "core/intersect.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <string>
+
+namespace mq = meshquilt;
+using meshquilt::test::swatch_path;
+using meshquilt::test::surface_data_path;
+using mq::Mesh;
+using mq::Vec3;
+namespace shapes = mq::test::shapes;
+namespace isect = mq::test::isect;
+
+namespace {
+
+
+double diagonal(const Mesh& m) { return mq::bounding_box(m).size().norm(); }
+
+/// A block of 7 x 3 x 3 unit voxels with a slot one unit wide and two deep along y (x in [3, 4],
+/// z in [1, 3]), refined to edges of at most `edge`: a closed base with a narrow concave gap.
+Mesh slot_block(double edge) {
+    std::vector<std::array<int, 3>> cells;
+    for (int x = 0; x < 7; ++x)
+        for (int y = 0; y < 3; ++y)
+            for (int z = 0; z < 3; ++z)
+                if (!(x == 3 && z >= 1)) cells.push_back({x, y, z});
+    std::vector<int> parent;
+    return mq::quilt::refine_long_edges(shapes::voxels(cells), edge, &parent);
+}
+
+double tet_volume(const std::array<Vec3, 4>& p) { return (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0; }
+
+/// Eq. 8-9 recomputed from the tetrahedra alone (texture-to-shell Jacobians, shell-volume
+/// weights, cube-root normalisation).
+double stretch_of(const std::vector<mq::ShellTet>& tets) {
+    double num = 0.0, vw = 0.0, vt = 0.0;
+    for (const auto& t : tets) {
+        Eigen::Matrix3d T, W;
+        for (int j = 1; j < 4; ++j) {
+            T.col(j - 1) = t.texture[static_cast<std::size_t>(j)] - t.texture[0];
+            W.col(j - 1) = t.world[static_cast<std::size_t>(j)] - t.world[0];
+        }
+        const double w = W.determinant() / 6.0;
+        num += (W * T.inverse()).squaredNorm() / 3.0 * w;
+        vw += w;
+        vt += T.determinant() / 6.0;
+    }
+    return std::sqrt(num / vw) * std::cbrt(vt / vw);
+}
+
+struct Case {
+    std::string name;
+    Mesh base;
+    double height;  ///< as a fraction of the diagonal
+};
+
+std::vector<Case> cases() {
+    return {
+        {"sphere", isect::icosphere(1.0, 3), 0.03},
+        {"torus", shapes::torus(2.0, 0.6, 48, 20), 0.03},
+        {"eight", mq::read_mesh(surface_data_path("eight.obj")), 0.02},
+        {"spot", mq::read_mesh(surface_data_path("spot.obj")), 0.015},
+        {"open cylinder", shapes::open_cylinder(1.0, 2.0, 32, 8), 0.03},
+        {"slot block", slot_block(0.25), 0.08},
+    };
+}
+
+double shell_height(const Case& c) { return c.height * diagonal(c.base); }
+
+}  // namespace
+
+// Every tetrahedron positive in texture space and in 3D, before and after optimisation; the
+// stretch is >= 1, agrees with an independent computation, and the optimisation never worsens it.
+TEST(ShellMap, BijectiveAndStretchNeverWorse) {
+    for (const Case& c : cases()) {
+        SCOPED_TRACE(c.name);
+        mq::ShellOptions o;
+        o.height = shell_height(c);
+        o.optimise = false;
+        const mq::ShellMap before(c.base, o);
+        o.optimise = true;
+        const mq::ShellMap after(c.base, o);
+        for (const mq::ShellMap* s : {&before, &after}) {
+            int bad_world = 0, bad_texture = 0;
+            const auto tets = s->tetrahedra();
+            ASSERT_EQ(tets.size(), 3 * c.base.faces.size());
+            for (const auto& t : tets) {
+                bad_world += !(tet_volume(t.world) > 0);
+                bad_texture += !(tet_volume(t.texture) > 0);
+            }
+            EXPECT_EQ(bad_world, 0);
+            EXPECT_EQ(bad_texture, 0);
+            EXPECT_EQ(s->statistics().inverted_world, 0);
+            EXPECT_EQ(s->statistics().inverted_texture, 0);
+            EXPECT_NEAR(stretch_of(tets), s->stretch_l2(), 1e-9);
+            EXPECT_GE(s->stretch_l2(), 1.0 - 1e-9);
+        }
+        const auto& st = after.statistics();
+        EXPECT_NEAR(st.stretch_l2_initial, before.stretch_l2(), 1e-12);
+        EXPECT_NEAR(st.stretch_l2_final, after.stretch_l2(), 1e-12);
+        EXPECT_LE(st.stretch_l2_final, st.stretch_l2_initial);
+        EXPECT_GT(st.free_offset_vertices, 0);
+        EXPECT_GE(st.optimisation_passes, 1);
+    }
+}
+
+// The offset surface meets neither itself nor the base (exact tests), heights stay in
+// [floor, H], and the bottom of the shell is the base itself.
+TEST(ShellMap, OffsetIsCleanAndBottomIsTheBase) {
+    for (const Case& c : cases()) {
+        SCOPED_TRACE(c.name);
+        const mq::ShellMap s(c.base, {shell_height(c)});
+        const Mesh off = s.offset_surface();
+        EXPECT_EQ(mq::count_self_intersections(off, 1), 0);
+        EXPECT_FALSE(mq::meshes_intersect(off, c.base));
+        EXPECT_EQ(s.statistics().offset_intersections, 0);
+        for (double h : s.heights()) {
+            EXPECT_LE(h, shell_height(c));
+            EXPECT_GE(h, 0.02 * shell_height(c) * (1 - 1e-12));
+        }
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        double worst = 0.0;
+        for (std::size_t f = 0; f < c.base.faces.size(); f += 7) {
+            double a = u(rng), b = u(rng);
+            if (a + b > 1) a = 1 - a, b = 1 - b;
+            const Vec3 bary(1 - a - b, a, b);
+            const Vec3 want = bary[0] * c.base.vertices[c.base.faces[f][0]] + bary[1] * c.base.vertices[c.base.faces[f][1]] +
+                              bary[2] * c.base.vertices[c.base.faces[f][2]];
+            worst = std::max(worst, (s.map({static_cast<int>(f), bary, 0.0}) - want).norm());
+        }
+        EXPECT_LT(worst, 1e-9 * diagonal(c.base));
+    }
+}
+
+// A point on an edge shared by two faces maps to the same place from either face, at every
+// height (the map is continuous, inside charts and across chart boundaries).
+TEST(ShellMap, ContinuousAcrossEdges) {
+    for (const Case& c : cases()) {
+        SCOPED_TRACE(c.name);
+        const mq::ShellMap s(c.base, {shell_height(c)});
+        const auto nb = mq::quilt::face_neighbours(c.base);
+        double worst = 0.0;
+        int tested = 0;
+        for (std::size_t f = 0; f < c.base.faces.size(); f += 3)
+            for (int k = 0; k < 3; ++k) {
+                const int g = nb[f][static_cast<std::size_t>(k)];
+                if (g < 0) continue;
+                const int a = c.base.faces[f][k], b = c.base.faces[f][(k + 1) % 3];
+                for (const double t : {0.25, 0.6})
+                    for (const double h : {0.3, 0.95}) {
+                        Vec3 bf = Vec3::Zero(), bg = Vec3::Zero();
+                        for (int j = 0; j < 3; ++j) {
+                            if (c.base.faces[f][j] == a) bf[j] = 1 - t;
+                            if (c.base.faces[f][j] == b) bf[j] = t;
+                            if (c.base.faces[static_cast<std::size_t>(g)][j] == a) bg[j] = 1 - t;
+                            if (c.base.faces[static_cast<std::size_t>(g)][j] == b) bg[j] = t;
+                        }
+                        const Vec3 p = s.map({static_cast<int>(f), bf, h * shell_height(c)});
+                        const Vec3 q = s.map({g, bg, h * shell_height(c)});
+                        worst = std::max(worst, (p - q).norm());
+                        ++tested;
+                    }
+            }
+        EXPECT_GT(tested, 0);
+        EXPECT_LT(worst, 1e-9 * diagonal(c.base));
+    }
+}
+
+// In the slot (one unit wide) the height is limited so that the two walls' shells keep apart, and
+// the report says where; on the open faces far from it the full height stays.
+TEST(ShellMap, HeightLimitedInNarrowSlot) {
+    const Mesh base = slot_block(0.25);
+    mq::ShellOptions o;
+    o.height = 0.6;  // taller than half the gap
+    const mq::ShellMap s(base, o);
+    const auto& st = s.statistics();
+    ASSERT_GT(st.height_limited_vertices, 0);
+    ASSERT_FALSE(st.limited_regions.empty());
+    EXPECT_GT(st.limited_area_fraction, 0.0);
+    EXPECT_LT(st.limited_area_fraction, 0.5);
+    EXPECT_LT(st.min_height_ratio, 0.5 / 0.6);
+    // The largest region is the slot.
+    const Vec3 c = st.limited_regions.front().centre;
+    EXPECT_NEAR(c.x(), 3.5, 0.5);
+    // Offset surfaces of the two walls stay apart: walls at x = 3 and x = 4.
+    const Mesh off = s.offset_surface();
+    for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+        const Vec3& p = base.vertices[v];
+        const bool in_slot = p.z() > 1.0 + 1e-9 && p.z() < 3.0 - 1e-9 && p.y() > 1e-9 && p.y() < 3.0 - 1e-9;
+        if (in_slot && std::fabs(p.x() - 3.0) < 1e-9) EXPECT_LT(off.vertices[v].x(), 3.5) << v;
+        if (in_slot && std::fabs(p.x() - 4.0) < 1e-9) EXPECT_GT(off.vertices[v].x(), 3.5) << v;
+        // The top face of the block, two units from the slot and from the edges, keeps H.
+        if (std::fabs(p.z() - 3.0) < 1e-9 && p.x() > 0.9 && p.x() < 1.6 && p.y() > 0.9 && p.y() < 2.1)
+            EXPECT_NEAR(s.heights()[v], o.height, 1e-12) << v;
+    }
+}
+
+TEST(ShellMap, RejectsBadOptions) {
+    const Mesh base = isect::icosphere(1.0, 1);
+    mq::ShellOptions o;
+    o.height = 0.0;
+    EXPECT_THROW(mq::ShellMap(base, o), mq::InvalidInput);
+    o.height = std::nan("");
+    EXPECT_THROW(mq::ShellMap(base, o), mq::InvalidInput);
+    o.height = 0.1;
+    EXPECT_THROW(mq::ShellMap(Mesh{}, o), mq::InvalidInput);
+}
+
+namespace {
+
+struct SlotRun {
+    mq::SurfaceQuiltResult r;
+    int vertices_in_base = 0;   ///< output vertices inside the base solid (beyond a small margin)
+    int elements_in_base = 0;   ///< elements with such a vertex
+    int outside_shell = 0;      ///< output vertices outside the offset surface (beyond the margin)
+};
+
+SlotRun quilt_slot(mq::Embedding embedding) {
+    // Built from the voxels directly: the surface stage refines on its own.
+    std::vector<std::array<int, 3>> cells;
+    for (int x = 0; x < 7; ++x)
+        for (int y = 0; y < 3; ++y)
+            for (int z = 0; z < 3; ++z)
+                if (!(x == 3 && z >= 1)) cells.push_back({x, y, z});
+    const Mesh base = shapes::voxels(cells);
+    mq::SurfaceQuiltOptions o;
+    o.swatch_size = 1.6;
+    o.height = 1.2;  // taller than the slot is wide
+    o.embedding = embedding;
+    SlotRun run{mq::quilt_surface(base, mq::read_mesh(swatch_path("rivets")), o)};
+    const mq::test::Solid solid(base);
+    const double margin = 1e-6;
+    std::vector<char> hit(static_cast<std::size_t>(run.r.report.elements), 0);
+    for (std::size_t f = 0; f < run.r.mesh.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const auto v = static_cast<std::size_t>(run.r.mesh.faces[f][k]);
+            if (solid.inside(run.r.mesh.vertices[v], margin)) hit[static_cast<std::size_t>(run.r.element_of_face[f])] = 1;
+        }
+    for (const Vec3& p : run.r.mesh.vertices) run.vertices_in_base += solid.inside(p, margin);
+    for (char h : hit) run.elements_in_base += h;
+    if (run.r.shell) {
+        const mq::test::Solid outer(run.r.shell->offset_surface());
+        for (std::size_t v = 0; v < run.r.mesh.vertices.size(); ++v)
+            if (run.r.anchors[v].height <= run.r.surface.shell_height && !outer.inside(run.r.mesh.vertices[v]) &&
+                outer.distance(run.r.mesh.vertices[v]) > margin)
+                ++run.outside_shell;
+    }
+    return run;
+}
+
+}  // namespace
+
+// The issue's proof that the shell map matters: on the slot, normal displacement pushes elements
+// into the opposite wall; the shell map keeps every element out of the base and inside the shell.
+TEST(ShellMap, SlotNoElementInBaseWhereNormalDisplacementCuts) {
+    const SlotRun normal = quilt_slot(mq::Embedding::Normal);
+    const SlotRun shell = quilt_slot(mq::Embedding::Shell);
+    EXPECT_GT(normal.elements_in_base, 0);
+    EXPECT_EQ(shell.vertices_in_base, 0);
+    EXPECT_EQ(shell.elements_in_base, 0);
+    EXPECT_EQ(shell.outside_shell, 0);
+    EXPECT_GT(shell.r.surface.shell.height_limited_vertices, 0);
+    EXPECT_EQ(shell.r.surface.base_faces_processed, shell.r.surface.base_faces);
+    EXPECT_TRUE(mq::test::elements_closed(shell.r.mesh, shell.r.element_of_face));
+    EXPECT_TRUE(mq::test::no_element_intersections(shell.r.mesh, shell.r.element_of_face));
+    std::cerr << "slot: normal displacement " << normal.elements_in_base << " of " << normal.r.report.elements << " elements ("
+              << normal.vertices_in_base << " vertices) in the base; shell " << shell.elements_in_base << " of " << shell.r.report.elements
+              << "\n";
+}
+
+namespace {
+
+/// 95th over 5th percentile of element size (square root of area over its swatch element's).
+double size_spread(const mq::SurfaceQuiltResult& r, const Mesh& swatch) {
+    int count = 0;
+    const std::vector<int> comp = mq::connected_components(swatch, &count);
+    std::vector<double> source_area(static_cast<std::size_t>(count), 0.0);
+    for (std::size_t f = 0; f < comp.size(); ++f) {
+        const auto& t = swatch.faces[f];
+        source_area[static_cast<std::size_t>(comp[f])] +=
+            0.5 * (swatch.vertices[t[1]] - swatch.vertices[t[0]]).cross(swatch.vertices[t[2]] - swatch.vertices[t[0]]).norm();
+    }
+    std::vector<double> area(static_cast<std::size_t>(r.report.elements), 0.0);
+    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f) {
+        const auto& t = r.mesh.faces[f];
+        area[static_cast<std::size_t>(r.element_of_face[f])] +=
+            0.5 * (r.mesh.vertices[t[1]] - r.mesh.vertices[t[0]]).cross(r.mesh.vertices[t[2]] - r.mesh.vertices[t[0]]).norm();
+    }
+    std::vector<double> size;
+    for (std::size_t e = 0; e < area.size(); ++e) size.push_back(std::sqrt(area[e] / source_area[static_cast<std::size_t>(r.source_element[e])]));
+    std::sort(size.begin(), size.end());
+    return size[size.size() * 95 / 100] / size[size.size() * 5 / 100];
+}
+
+}  // namespace
+
+// Element sizes stay as even with the shell map as with normal displacement (95th over 5th
+// percentile of element size relative to its swatch element), on curved bases.
+TEST(ShellMap, ElementSizesAsEvenAsWithNormalDisplacement) {
+    const Mesh swatch = mq::read_mesh(swatch_path("rivets"));
+    for (const std::string name : {"eight.obj", "spot.obj"}) {
+        SCOPED_TRACE(name);
+        const Mesh base = mq::read_mesh(surface_data_path(name));
+        mq::SurfaceQuiltOptions o;
+        o.scale = 0.15;
+        o.embedding = mq::Embedding::Normal;
+        const double normal = size_spread(mq::quilt_surface(base, swatch, o), swatch);
+        o.embedding = mq::Embedding::Shell;
+        const auto r = mq::quilt_surface(base, swatch, o);
+        const double shell = size_spread(r, swatch);
+        std::cerr << name << ": size spread (p95/p5) normal " << normal << ", shell " << shell << "\n";
+        EXPECT_LE(shell, normal * 1.01);
+        EXPECT_EQ(r.surface.elements_below_base, 0);
+    }
+}
