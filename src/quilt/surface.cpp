@@ -114,6 +114,7 @@ public:
         t0 = Clock::now();
         prepare_base(base);
         stage_seconds_["prepare base"] += seconds_since(t0);
+        build_shell();
     }
 
     SurfaceQuiltResult run() {
@@ -256,26 +257,29 @@ private:
         // The shell holds the tallest elements: the field's largest scale sets its height.
         const double max_local = *std::max_element(local_scale_.begin(), local_scale_.end());
         surface_.shell_height = opt_.height > 0 ? opt_.height : thickness * scale_ * max_local;
-        if (opt_.embedding == Embedding::Shell) {
-            auto t0 = Clock::now();
-            opt_.reporter.report("shell map", 0.0);
-            ShellOptions so;
-            so.height = surface_.shell_height;
-            so.optimise = opt_.optimise_shell;
-            so.seed = opt_.seed;
-            shell_ = std::make_shared<const ShellMap>(base_.mesh, so);
-            surface_.shell = shell_->statistics();
-            stage_seconds_["shell map"] += seconds_since(t0);
-            if (surface_.shell.height_limited_vertices > 0)
-                warnings_.push_back("the shell height was lowered at " + std::to_string(surface_.shell.height_limited_vertices) + " base vertices (" +
-                                    num(100.0 * surface_.shell.limited_area_fraction) + "% of the area, down to " +
-                                    num(100.0 * surface_.shell.min_height_ratio) +
-                                    "% of the height) where the base is concave or narrow; the decoration is flattened there");
-            if (surface_.shell.inverted_world > 0 || surface_.shell.offset_intersections > 0)
-                warnings_.push_back("the shell could not be made valid everywhere (" + std::to_string(surface_.shell.inverted_world) +
-                                    " inverted tetrahedra, " + std::to_string(surface_.shell.offset_intersections) +
-                                    " offset face pairs still meeting): the base is crumpled there");
-        }
+    }
+
+    /// Section 3.2: the shell map over the base as used, tall enough for the tallest elements.
+    void build_shell() {
+        if (opt_.embedding != Embedding::Shell) return;
+        auto t0 = Clock::now();
+        opt_.reporter.report("shell map", 0.0);
+        ShellOptions so;
+        so.height = surface_.shell_height;
+        so.optimise = opt_.optimise_shell;
+        so.seed = opt_.seed;
+        shell_ = std::make_shared<const ShellMap>(base_.mesh, so);
+        surface_.shell = shell_->statistics();
+        stage_seconds_["shell map"] += seconds_since(t0);
+        if (surface_.shell.height_limited_vertices > 0)
+            warnings_.push_back("the shell height was lowered at " + std::to_string(surface_.shell.height_limited_vertices) + " base vertices (" +
+                                num(100.0 * surface_.shell.limited_area_fraction) + "% of the area, down to " +
+                                num(100.0 * surface_.shell.min_height_ratio) +
+                                "% of the height) where the base is concave or narrow; the decoration is flattened there");
+        if (surface_.shell.inverted_world > 0 || surface_.shell.offset_intersections > 0)
+            warnings_.push_back("the shell could not be made valid everywhere (" + std::to_string(surface_.shell.inverted_world) +
+                                " inverted tetrahedra, " + std::to_string(surface_.shell.offset_intersections) +
+                                " offset face pairs still meeting): the base is crumpled there");
     }
 
     /// The unprocessed face with the most processed faces around its corners; ties at random.

@@ -359,9 +359,12 @@ void ShellMap::Impl::build_atlas() {
     chart_of_face.assign(F, -1);
     tex_corner.assign(F, {-1, -1, -1});
     int charts = 0;
+    // Seeds follow face order, so neighbouring charts see similar curvature: each starts from 1.5
+    // times the radius that passed last (each try costs a disc and an LSCM solve).
+    double last = 0.15 * diag;
     for (std::size_t seed = 0; seed < F; ++seed) {
         if (chart_of_face[seed] >= 0) continue;
-        double radius = 0.15 * diag;
+        double radius = std::min(0.15 * diag, 1.5 * last);
         quilt::FlatPatch flat;
         for (;;) {
             const std::vector<int> faces = quilt::grow_disc(base, open, centroid, static_cast<int>(seed), radius);
@@ -375,6 +378,7 @@ void ShellMap::Impl::build_atlas() {
                 ok = ok && quilt::area_distortion(base, flat) <= kChartDistortion;
             }
             if (ok || faces.size() <= 1) {
+                last = radius;
                 if (!ok && !quilt::flatten_lscm(base, {static_cast<int>(seed)}, &flat))
                     throw Error(ErrorCode::Internal, "shell map: a base face could not be flattened");
                 break;
@@ -468,7 +472,7 @@ void ShellMap::Impl::optimise() {
     const std::size_t T = tex_uv.size();
     // Per free texture vertex: the tetrahedra (face, k) that use its offset corner, and a step.
     std::vector<std::vector<std::pair<int, int>>> uses(T);
-    std::vector<double> step(T, 0.0);
+    std::vector<double> step(T, 0.0), max_step(T, 0.0);
     std::vector<double> floor_volume;  // per (face, k): least texture volume allowed
     floor_volume.resize(3 * base.faces.size());
     for (std::size_t f = 0; f < base.faces.size(); ++f)
@@ -489,6 +493,7 @@ void ShellMap::Impl::optimise() {
                     shortest = std::min(shortest, (tex_uv[static_cast<std::size_t>(tex_corner[fi][static_cast<std::size_t>(j)])] - tex_uv[t]).norm());
         }
         step[t] = 0.25 * shortest;
+        max_step[t] = 0.5 * shortest;
     }
     auto energy = [&](std::size_t t, bool* valid) {
         double e = 0.0;
@@ -514,7 +519,7 @@ void ShellMap::Impl::optimise() {
     for (int pass = 0; pass < opt.max_passes; ++pass) {
         double gain = 0.0;
         for (std::size_t t = 0; t < T; ++t) {
-            if (!tex_free[t] || uses[t].empty()) continue;
+            if (!tex_free[t] || uses[t].empty() || step[t] < 1e-3 * max_step[t]) continue;
             bool valid = true;
             const double e0 = energy(t, &valid);
             const Vec2 start = tex_top[t];
@@ -522,15 +527,20 @@ void ShellMap::Impl::optimise() {
             const Vec2 d(std::cos(a), std::sin(a));
             double best = e0;
             Vec2 best_pos = start;
-            for (double s = step[t]; s > step[t] / 40.0; s *= 0.5)
+            int best_level = -1;
+            for (int level = 0; level < 3; ++level)
                 for (const double sign : {1.0, -1.0}) {
-                    tex_top[t] = start + sign * s * d;
+                    tex_top[t] = start + sign * std::ldexp(step[t], -level) * d;
                     const double e = energy(t, &valid);
                     if (valid && e < best) {
                         best = e;
                         best_pos = tex_top[t];
+                        best_level = level;
                     }
                 }
+            // Steps adapt: longer after a full step paid, shorter after nothing did.
+            if (best_level == 0) step[t] = std::min(1.5 * step[t], max_step[t]);
+            if (best_level < 0) step[t] *= 0.5;
             tex_top[t] = best_pos;
             gain += e0 - best;
         }
