@@ -340,3 +340,16 @@ TEST(ShellMap, ElementSizesAsEvenAsWithNormalDisplacement) {
         EXPECT_EQ(r.surface.elements_below_base, 0);
     }
 }
+
+// A zero-area face (collinear corners) does not stop the shell, and every point still maps to a
+// finite position (the face's prism is flat; its points follow the offset directions).
+TEST(ShellMap, ZeroAreaFaceMapsToFinitePositions) {
+    Mesh base = shapes::grid(4, 1.0);
+    // Move an interior vertex onto the segment between two of its neighbours of one face.
+    const auto& t = base.faces[10];
+    base.vertices[t[0]] = 0.5 * (base.vertices[t[1]] + base.vertices[t[2]]);
+    const mq::ShellMap s(base, {0.1});
+    for (std::size_t f = 0; f < base.faces.size(); ++f)
+        for (const double h : {0.0, 0.05, 0.1, 0.2}) EXPECT_TRUE(s.map({static_cast<int>(f), Vec3(0.2, 0.3, 0.5), h}).allFinite()) << f;
+    EXPECT_GE(s.stretch_l2(), 1.0 - 1e-9);
+}

@@ -111,6 +111,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                             {"base_flipped_components", s.base_flipped_components},
                             {"vertices_below_base", s.vertices_below_base},
                             {"elements_below_base", s.elements_below_base},
+                            {"vertices_above_shell", s.vertices_above_shell},
                             {"embedding", s.embedding == Embedding::Shell ? "shell" : "normal"},
                             {"shell_height", s.shell_height}};
             if (s.embedding == Embedding::Shell) {

@@ -98,6 +98,9 @@ struct SurfaceQualityReport {
     /// shell height), and elements with any: decoration cutting into the base.
     int vertices_below_base = 0;
     int elements_below_base = 0;
+    /// Shell embedding: output vertices whose height exceeds the shell's (mapped above the offset
+    /// surface by extrapolation).
+    int vertices_above_shell = 0;
     Embedding embedding = Embedding::Shell;
     double shell_height = 0.0;         ///< H in base units (texture-space height of the shell)
     ShellStatistics shell;             ///< with the shell embedding: construction, stretch, limited heights

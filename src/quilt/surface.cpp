@@ -792,6 +792,11 @@ private:
             for (int k = 0; k < 3; ++k)
                 if (below[static_cast<std::size_t>(result.mesh.faces[f][k])]) element[static_cast<std::size_t>(result.element_of_face[f])] = 1;
         surface_.vertices_below_base = static_cast<int>(std::count(below.begin(), below.end(), 1));
+        // Heights beyond the shell (an element deformed taller than H and lifted off the base):
+        // the shell map extrapolates them above the offset surface.
+        surface_.vertices_above_shell = 0;
+        if (shell_)
+            for (const SurfacePoint& sp : result.anchors) surface_.vertices_above_shell += sp.height > surface_.shell_height * (1.0 + 1e-9);
         surface_.elements_below_base = static_cast<int>(std::count(element.begin(), element.end(), 1));
     }
 

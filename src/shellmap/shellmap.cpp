@@ -44,8 +44,11 @@ constexpr double kRayClearance = 2.2;
 constexpr double kHeightSlope = 0.5;
 /// A shell tetrahedron must keep at least this fraction of its straight prism's volume share.
 constexpr double kMinWorldVolume = 1e-3;
-/// Heights are never lowered below this fraction of H.
+/// Heights are never lowered below this fraction of H by the clearance and intersection rules...
 constexpr double kMinHeight = 0.02;
+/// ... except to mend an inverted prism, whose volumes are positive to first order in the heights:
+/// such corners may go down to this fraction.
+constexpr double kMinPrismHeight = 1e-4;
 /// Offset directions must make at least this cosine with every incident face's normal.
 constexpr double kMinDirectionCos = 0.1;
 
@@ -207,18 +210,38 @@ void ShellMap::Impl::offset_directions() {
         }
         dir.swap(next);
     }
-    // Repair directions that do not see every incident face from outside: push towards the worst
-    // face's normal.
+    // Repair directions that do not see every incident face from outside: the direction that best
+    // sees them all (maximising the least cosine) lies on a face normal or is equidistant from two
+    // or three of them; all such candidates are tried.
     for (std::size_t v = 0; v < V; ++v) {
-        if (!(dir[v].norm() > 0)) dir[v] = vertex_faces[v].empty() ? Vec3::UnitZ() : face_normal[static_cast<std::size_t>(vertex_faces[v][0])];
-        for (int it = 0; it < 30 && worst_cos(v, dir[v]) < kMinDirectionCos; ++it) {
-            int worst = vertex_faces[v][0];
-            for (int f : vertex_faces[v])
-                if (dir[v].dot(face_normal[static_cast<std::size_t>(f)]) < dir[v].dot(face_normal[static_cast<std::size_t>(worst)])) worst = f;
-            const Vec3 d = dir[v] + 0.5 * face_normal[static_cast<std::size_t>(worst)];
-            if (d.norm() == 0) break;
-            dir[v] = d.normalized();
+        if (vertex_faces[v].empty()) continue;
+        if (!(dir[v].norm() > 0)) dir[v] = face_normal[static_cast<std::size_t>(vertex_faces[v][0])];
+        if (worst_cos(v, dir[v]) >= kMinDirectionCos) continue;
+        std::vector<Vec3> normals;
+        for (int f : vertex_faces[v])
+            if (face_normal[static_cast<std::size_t>(f)].norm() > 0) normals.push_back(face_normal[static_cast<std::size_t>(f)]);
+        Vec3 best = dir[v];
+        double best_cos = worst_cos(v, best);
+        auto consider = [&](Vec3 d) {
+            if (!(d.norm() > 1e-12) || !d.allFinite()) return;
+            d.normalize();
+            for (const Vec3& c : {d, Vec3(-d)}) {
+                const double w = worst_cos(v, c);
+                if (w > best_cos) {
+                    best_cos = w;
+                    best = c;
+                }
+            }
+        };
+        const std::size_t n = std::min<std::size_t>(normals.size(), 16);
+        for (std::size_t a = 0; a < n; ++a) {
+            consider(normals[a]);
+            for (std::size_t b = a + 1; b < n; ++b) {
+                consider(normals[a] + normals[b]);
+                for (std::size_t c = b + 1; c < n; ++c) consider((normals[a] - normals[b]).cross(normals[a] - normals[c]));
+            }
         }
+        dir[v] = best;
     }
 }
 
@@ -292,7 +315,7 @@ void ShellMap::Impl::limit_heights() {
         // positive when its directions point to the face's outer side, so lowering mends it; a
         // prism on a crumpled spot, where no direction sees every face from outside, cannot be
         // mended this way and is left (counted as inverted).
-        for (int pass = 0; pass < 60; ++pass) {
+        for (int pass = 0; pass < 80; ++pass) {
             std::vector<char> lower(V, 0);
             bool any = false;
             for (std::size_t f = 0; f < F; ++f) {
@@ -307,7 +330,7 @@ void ShellMap::Impl::limit_heights() {
                 if (!bad) continue;
                 for (int k = 0; k < 3; ++k) {
                     const auto v = static_cast<std::size_t>(t[k]);
-                    if (height[v] > kMinHeight * H) {
+                    if (height[v] > kMinPrismHeight * H) {
                         lower[v] = 1;
                         any = true;
                     }
@@ -316,7 +339,7 @@ void ShellMap::Impl::limit_heights() {
             if (!any) break;
             for (std::size_t v = 0; v < V; ++v)
                 if (lower[v]) {
-                    height[v] = std::max(kMinHeight * H, 0.8 * height[v]);
+                    height[v] = std::max(kMinPrismHeight * H, 0.8 * height[v]);
                     top[v] = base.vertices[v] + height[v] * dir[v];
                 }
             changed = true;
@@ -379,8 +402,16 @@ void ShellMap::Impl::build_atlas() {
             }
             if (ok || faces.size() <= 1) {
                 last = radius;
-                if (!ok && !quilt::flatten_lscm(base, {static_cast<int>(seed)}, &flat))
-                    throw Error(ErrorCode::Internal, "shell map: a base face could not be flattened");
+                if (!ok && !quilt::flatten_lscm(base, {static_cast<int>(seed)}, &flat)) {
+                    // A zero-area face: a chart of its own with the corners where they fall.
+                    flat = {};
+                    flat.faces = {static_cast<int>(seed)};
+                    flat.local = {Tri(0, 1, 2)};
+                    for (int k = 0; k < 3; ++k) {
+                        flat.vertices.push_back(base.faces[seed][k]);
+                        flat.uv.push_back(base.vertices[static_cast<std::size_t>(base.faces[seed][k])].head<2>());
+                    }
+                }
                 break;
             }
             radius *= 0.6;
@@ -727,6 +758,15 @@ Vec3 ShellMap::map(const SurfacePoint& sp) const {
             if (static_cast<std::size_t>(f) != f0) try_face(static_cast<std::size_t>(f));
             if (best_min >= -1e-12) break;
         }
+    }
+    if (!(best_min > -std::numeric_limits<double>::infinity())) {
+        // Only a degenerate prism (a zero-area face): interpolate along the offset directions.
+        Vec3 out = Vec3::Zero();
+        for (int k = 0; k < 3; ++k) {
+            const auto v = static_cast<std::size_t>(m.base.faces[f0][k]);
+            out += sp.bary[k] * (m.base.vertices[v] + (sp.height / m.H) * m.height[v] * m.dir[v]);
+        }
+        return out;
     }
     const Eigen::Vector4d lam = m.tet_coordinates(best_f, best_k, p);
     const TetCodes& c = m.tets[best_f][static_cast<std::size_t>(best_k)];
