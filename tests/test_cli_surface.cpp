@@ -76,7 +76,8 @@ TEST_F(CliSurface, NormalEmbeddingOnRequestDiffersAndHasNoShellReport) {
     const fs::path a = dir / "a.obj", b = dir / "b.obj", report = dir / "r.json";
     const std::string common = base + " " + swatch + " --scale 0.3 --seed 2";
     ASSERT_EQ(run(common + " -o " + a.string()).code, 0);
-    ASSERT_EQ(run(common + " --embed normal -o " + b.string() + " --report " + report.string()).code, 0);
+    // (Global flags may come after the command's arguments.)
+    ASSERT_EQ(run(common + " --embed normal -o " + b.string() + " --report " + report.string() + " -q").code, 0);
     EXPECT_NE(slurp(a), slurp(b));
     const auto j = nlohmann::json::parse(slurp(report));
     EXPECT_EQ(j.at("surface").at("embedding").get<std::string>(), "normal");

@@ -297,32 +297,50 @@ TEST(ShellMap, SlotNoElementInBaseWhereNormalDisplacementCuts) {
 
 namespace {
 
-/// 95th over 5th percentile of element size (square root of area over its swatch element's).
-double size_spread(const mq::SurfaceQuiltResult& r, const Mesh& swatch) {
+/// An element's diameter (double sweep: the farthest vertex from the farthest vertex from any).
+double diameter(const Mesh& m) {
+    auto farthest = [&](const Vec3& from) {
+        const Vec3* best = &m.vertices.front();
+        for (const Vec3& v : m.vertices)
+            if ((v - from).squaredNorm() > (*best - from).squaredNorm()) best = &v;
+        return *best;
+    };
+    const Vec3 a = farthest(m.vertices.front());
+    return (farthest(a) - a).norm();
+}
+
+double area_of(const Mesh& m) {
+    double a = 0.0;
+    for (const auto& t : m.faces) a += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+    return a;
+}
+
+double p95_over_p5(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() * 95 / 100] / v[v.size() * 5 / 100];
+}
+
+/// 95th over 5th percentile of element size relative to its swatch element's: by diameter (the
+/// lateral size, which a lowered shell does not change) and by the square root of the area
+/// (which flattening lowers).
+std::pair<double, double> size_spread(const mq::SurfaceQuiltResult& r, const Mesh& swatch) {
     int count = 0;
     const std::vector<int> comp = mq::connected_components(swatch, &count);
-    std::vector<double> source_area(static_cast<std::size_t>(count), 0.0);
-    for (std::size_t f = 0; f < comp.size(); ++f) {
-        const auto& t = swatch.faces[f];
-        source_area[static_cast<std::size_t>(comp[f])] +=
-            0.5 * (swatch.vertices[t[1]] - swatch.vertices[t[0]]).cross(swatch.vertices[t[2]] - swatch.vertices[t[0]]).norm();
+    const std::vector<Mesh> source = mq::test::split_elements(swatch, comp);
+    std::vector<double> by_diameter, by_area;
+    const auto parts = mq::test::split_elements(r.mesh, r.element_of_face);
+    for (std::size_t e = 0; e < parts.size(); ++e) {
+        const Mesh& src = source[static_cast<std::size_t>(r.source_element[e])];
+        by_diameter.push_back(diameter(parts[e]) / diameter(src));
+        by_area.push_back(std::sqrt(area_of(parts[e]) / area_of(src)));
     }
-    std::vector<double> area(static_cast<std::size_t>(r.report.elements), 0.0);
-    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f) {
-        const auto& t = r.mesh.faces[f];
-        area[static_cast<std::size_t>(r.element_of_face[f])] +=
-            0.5 * (r.mesh.vertices[t[1]] - r.mesh.vertices[t[0]]).cross(r.mesh.vertices[t[2]] - r.mesh.vertices[t[0]]).norm();
-    }
-    std::vector<double> size;
-    for (std::size_t e = 0; e < area.size(); ++e) size.push_back(std::sqrt(area[e] / source_area[static_cast<std::size_t>(r.source_element[e])]));
-    std::sort(size.begin(), size.end());
-    return size[size.size() * 95 / 100] / size[size.size() * 5 / 100];
+    return {p95_over_p5(by_diameter), p95_over_p5(by_area)};
 }
 
 }  // namespace
 
 // Element sizes stay as even with the shell map as with normal displacement (95th over 5th
-// percentile of element size relative to its swatch element), on curved bases.
+// percentile of element diameter relative to its swatch element's), on curved bases.
 TEST(ShellMap, ElementSizesAsEvenAsWithNormalDisplacement) {
     const Mesh swatch = mq::read_mesh(swatch_path("rivets"));
     for (const std::string name : {"eight.obj", "spot.obj"}) {
@@ -331,12 +349,15 @@ TEST(ShellMap, ElementSizesAsEvenAsWithNormalDisplacement) {
         mq::SurfaceQuiltOptions o;
         o.scale = 0.15;
         o.embedding = mq::Embedding::Normal;
-        const double normal = size_spread(mq::quilt_surface(base, swatch, o), swatch);
+        const auto normal = size_spread(mq::quilt_surface(base, swatch, o), swatch);
         o.embedding = mq::Embedding::Shell;
         const auto r = mq::quilt_surface(base, swatch, o);
-        const double shell = size_spread(r, swatch);
-        std::cerr << name << ": size spread (p95/p5) normal " << normal << ", shell " << shell << "\n";
-        EXPECT_LE(shell, normal * 1.01);
+        const auto shell = size_spread(r, swatch);
+        std::cerr << name << ": size spread (p95/p5) by diameter: normal " << normal.first << ", shell " << shell.first
+                  << "; by area: normal " << normal.second << ", shell " << shell.second << "\n";
+        // Two different syntheses (the embedding steers collisions and retries): 2% is their noise.
+        EXPECT_LE(shell.first, normal.first * 1.02);
+        EXPECT_LE(shell.second, normal.second * 1.02);
         EXPECT_EQ(r.surface.elements_below_base, 0);
     }
 }

@@ -104,6 +104,8 @@ int main(int argc, char** argv) {
     add_plane_command(root, commands);
     add_inspect_command(root, commands);
     add_surface_command(root, commands);
+    // Global flags (-q, -v) may also follow a command's own arguments.
+    for (auto& c : commands) c.app->fallthrough();
     // `meshquilt BASE SWATCH ...` is `meshquilt surface BASE SWATCH ...`: the first argument that is
     // not a flag, if it names no command, starts the main job.
     std::vector<std::string> args(argv + 1, argv + argc);
