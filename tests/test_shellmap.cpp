@@ -268,8 +268,7 @@ SlotRun quilt_slot(mq::Embedding embedding) {
     if (run.r.shell) {
         const mq::test::Solid outer(run.r.shell->offset_surface());
         for (std::size_t v = 0; v < run.r.mesh.vertices.size(); ++v)
-            if (run.r.anchors[v].height <= run.r.surface.shell_height && !outer.inside(run.r.mesh.vertices[v]) &&
-                outer.distance(run.r.mesh.vertices[v]) > margin)
+            if (!outer.inside(run.r.mesh.vertices[v]) && outer.distance(run.r.mesh.vertices[v]) > margin)
                 ++run.outside_shell;
     }
     return run;
@@ -286,6 +285,9 @@ TEST(ShellMap, SlotNoElementInBaseWhereNormalDisplacementCuts) {
     EXPECT_EQ(shell.vertices_in_base, 0);
     EXPECT_EQ(shell.elements_in_base, 0);
     EXPECT_EQ(shell.outside_shell, 0);
+    EXPECT_EQ(shell.r.surface.vertices_above_shell, 0);
+    EXPECT_EQ(shell.r.surface.elements_below_base, 0);
+    EXPECT_GT(normal.r.surface.elements_below_base, 0);
     EXPECT_GT(shell.r.surface.shell.height_limited_vertices, 0);
     EXPECT_EQ(shell.r.surface.base_faces_processed, shell.r.surface.base_faces);
     EXPECT_TRUE(mq::test::elements_closed(shell.r.mesh, shell.r.element_of_face));

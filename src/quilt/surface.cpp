@@ -645,6 +645,14 @@ private:
         for (const SurfacePoint& sp : *out) lowest = std::min(lowest, sp.height);
         if (lowest < 0.0)
             for (SurfacePoint& sp : *out) sp.height -= lowest;
+        // In the shell, an element that deformation (or the lift) made taller than the shell is
+        // scaled down in height to fit: no vertex leaves the shell.
+        if (shell_) {
+            double highest = 0.0;
+            for (const SurfacePoint& sp : *out) highest = std::max(highest, sp.height);
+            if (highest > surface_.shell_height)
+                for (SurfacePoint& sp : *out) sp.height *= surface_.shell_height / highest;
+        }
         return true;
     }
 
