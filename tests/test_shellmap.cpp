@@ -376,3 +376,20 @@ TEST(ShellMap, ZeroAreaFaceMapsToFinitePositions) {
         for (const double h : {0.0, 0.05, 0.1, 0.2}) EXPECT_TRUE(s.map({static_cast<int>(f), Vec3(0.2, 0.3, 0.5), h}).allFinite()) << f;
     EXPECT_GE(s.stretch_l2(), 1.0 - 1e-9);
 }
+
+// A point given slightly beyond its face's edge (extrapolated barycentric coordinates, as a patch
+// border produces) continues onto the neighbouring face: at height 0 it lies on the base, not on
+// the face's plane extended under the neighbour.
+TEST(ShellMap, PointsBeyondAnEdgeContinueOntoTheNeighbour) {
+    const Mesh base = isect::icosphere(1.0, 2);  // coarse: 16 degrees between neighbouring faces
+    const mq::ShellMap s(base, {0.05});
+    const mq::test::Solid solid(base);
+    double worst = 0.0;
+    for (std::size_t f = 0; f < base.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            Vec3 bary = Vec3::Constant(0.55);
+            bary[k] = -0.1;  // beyond the edge opposite corner k
+            worst = std::max(worst, solid.distance(s.map({static_cast<int>(f), bary, 0.0})));
+        }
+    EXPECT_LT(worst, 1e-9);
+}

@@ -109,6 +109,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                             {"region_density_max", s.region_density_max},
                             {"regions", s.regions},
                             {"base_flipped_components", s.base_flipped_components},
+                            {"base_fold_vertices_smoothed", s.base_fold_vertices_smoothed},
                             {"vertices_below_base", s.vertices_below_base},
                             {"elements_below_base", s.elements_below_base},
                             {"vertices_above_shell", s.vertices_above_shell},

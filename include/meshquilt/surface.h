@@ -94,6 +94,9 @@ struct SurfaceQualityReport {
     double region_density_max = 0.0;
     int regions = 0;
     int base_flipped_components = 0;  ///< inside-out components flipped for the synthesis
+    /// Shell embedding: vertices on folds of the base (no direction sees all their faces) moved to
+    /// their neighbours' mean on the synthesis's copy of the base.
+    int base_fold_vertices_smoothed = 0;
     /// Output vertices behind the base (inner side of the closest base face, deeper than 1% of the
     /// shell height), and elements with any: decoration cutting into the base.
     int vertices_below_base = 0;

@@ -14,6 +14,7 @@
 #include "quilt/match.h"
 #include "quilt/patch.h"
 #include "quilt/swatch.h"
+#include "shellmap/visibility.h"
 
 #include <algorithm>
 #include <chrono>
@@ -44,6 +45,9 @@ constexpr double kMaxDistortion = 2.0;
 /// New elements whose embedded area differs from their swatch element's (scaled) by more than this
 /// factor are rescaled.
 constexpr double kMaxSizeDrift = 1.02;
+/// A base vertex whose faces no direction sees with at least this cosine is on a fold (the shell
+/// map's offset directions need 0.1).
+constexpr double kShellFoldCos = 0.1;
 
 /// The base as the synthesis uses it: exact duplicate vertices welded, closed inside-out components
 /// flipped, long edges split.
@@ -232,6 +236,15 @@ private:
                                " base triangles; choose a larger --scale or --swatch-size");
         std::vector<int> parent;
         base_.mesh = quilt::refine_long_edges(m, max_edge, &parent);
+        if (opt_.embedding == Embedding::Shell) {
+            // Folds (a scan's crumpled slivers, where no direction sees every face around a vertex
+            // from outside) would leave shell prisms inverted: such vertices of our copy move to
+            // their neighbours' mean.
+            surface_.base_fold_vertices_smoothed = shell::smooth_folds(base_.mesh, kShellFoldCos);
+            if (surface_.base_fold_vertices_smoothed > 0)
+                warnings_.push_back("the base folds onto itself at " + std::to_string(surface_.base_fold_vertices_smoothed) +
+                                    " vertices; they were smoothed (on the synthesis's copy) so the shell can be built there");
+        }
         const std::size_t F = base_.mesh.faces.size();
         base_.nb = quilt::face_neighbours(base_.mesh);
         base_.normal = vertex_normals(base_.mesh);

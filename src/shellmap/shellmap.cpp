@@ -10,6 +10,7 @@
 #include "quilt/field.h"
 #include "quilt/patch.h"
 #include "quilt/swatch.h"
+#include "shellmap/visibility.h"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -152,6 +153,7 @@ struct ShellMap::Impl {
     void optimise();
     void collect_statistics();
     void build_grids();
+    [[nodiscard]] SurfacePoint unfold(SurfacePoint sp) const;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -220,27 +222,9 @@ void ShellMap::Impl::offset_directions() {
         std::vector<Vec3> normals;
         for (int f : vertex_faces[v])
             if (face_normal[static_cast<std::size_t>(f)].norm() > 0) normals.push_back(face_normal[static_cast<std::size_t>(f)]);
-        Vec3 best = dir[v];
-        double best_cos = worst_cos(v, best);
-        auto consider = [&](Vec3 d) {
-            if (!(d.norm() > 1e-12) || !d.allFinite()) return;
-            d.normalize();
-            for (const Vec3& c : {d, Vec3(-d)}) {
-                const double w = worst_cos(v, c);
-                if (w > best_cos) {
-                    best_cos = w;
-                    best = c;
-                }
-            }
-        };
-        const std::size_t n = std::min<std::size_t>(normals.size(), 16);
-        for (std::size_t a = 0; a < n; ++a) {
-            consider(normals[a]);
-            for (std::size_t b = a + 1; b < n; ++b) {
-                consider(normals[a] + normals[b]);
-                for (std::size_t c = b + 1; c < n; ++c) consider((normals[a] - normals[b]).cross(normals[a] - normals[c]));
-            }
-        }
+        if (normals.empty()) continue;
+        Vec3 best;
+        shell::best_visibility(normals, dir[v], &best);
         dir[v] = best;
     }
 }
@@ -724,8 +708,49 @@ ShellMap::~ShellMap() = default;
 ShellMap::ShellMap(ShellMap&&) noexcept = default;
 ShellMap& ShellMap::operator=(ShellMap&&) noexcept = default;
 
-Vec3 ShellMap::map(const SurfacePoint& sp) const {
+SurfacePoint ShellMap::Impl::unfold(SurfacePoint sp) const {
+    // A point given beyond its face's edge (extrapolated coordinates) continues onto the face across
+    // that edge, turned about the edge into its plane, up to three faces on: extrapolating in the
+    // face's own plane would put it under the neighbour at a convex edge.
+    for (int step = 0; step < 3; ++step) {
+        int k = 0;
+        sp.bary.minCoeff(&k);
+        if (sp.bary[k] >= 0) break;
+        const auto f = static_cast<std::size_t>(sp.face);
+        const int g = nb[f][static_cast<std::size_t>((k + 1) % 3)];  // across the edge opposite corner k
+        if (g < 0) break;
+        const Tri& t = base.faces[f];
+        const Vec3 p = sp.bary[0] * base.vertices[static_cast<std::size_t>(t[0])] + sp.bary[1] * base.vertices[static_cast<std::size_t>(t[1])] +
+                       sp.bary[2] * base.vertices[static_cast<std::size_t>(t[2])];
+        const Vec3 a = base.vertices[static_cast<std::size_t>(t[(k + 1) % 3])], b = base.vertices[static_cast<std::size_t>(t[(k + 2) % 3])];
+        const Vec3 e = b - a;
+        if (!(e.squaredNorm() > 0)) break;
+        const double along = (p - a).dot(e) / e.squaredNorm();
+        const double out = (p - a - along * e).norm();  // distance beyond the edge
+        const Tri& tg = base.faces[static_cast<std::size_t>(g)];
+        int opposite = 0;
+        while (tg[opposite] == t[(k + 1) % 3] || tg[opposite] == t[(k + 2) % 3]) ++opposite;
+        const Vec3 c = base.vertices[static_cast<std::size_t>(tg[opposite])];
+        Vec3 inward = (c - a) - (c - a).dot(e) / e.squaredNorm() * e;
+        if (!(inward.norm() > 0)) break;
+        const Vec3 q = a + along * e + out * inward.normalized();
+        // Barycentric coordinates of q in g.
+        const Vec3 g0 = base.vertices[static_cast<std::size_t>(tg[0])], g1 = base.vertices[static_cast<std::size_t>(tg[1])],
+                   g2 = base.vertices[static_cast<std::size_t>(tg[2])];
+        const Vec3 n = (g1 - g0).cross(g2 - g0);
+        const double area2 = n.squaredNorm();
+        if (!(area2 > 0)) break;
+        const double l0 = (g1 - q).cross(g2 - q).dot(n) / area2;
+        const double l2 = (g1 - g0).cross(q - g0).dot(n) / area2;
+        sp.face = g;
+        sp.bary = Vec3(l0, 1.0 - l0 - l2, l2);
+    }
+    return sp;
+}
+
+Vec3 ShellMap::map(const SurfacePoint& given) const {
     const Impl& m = *impl_;
+    const SurfacePoint sp = given.bary.minCoeff() < 0 ? m.unfold(given) : given;
     const auto f0 = static_cast<std::size_t>(sp.face);
     Vec2 uv = Vec2::Zero();
     for (int k = 0; k < 3; ++k) uv += sp.bary[k] * m.tex_uv[static_cast<std::size_t>(m.tex_corner[f0][static_cast<std::size_t>(k)])];

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#pragma once
+// Directions that see a vertex's faces from outside, for offset directions and for finding folds.
+
+#include "meshquilt/mesh.h"
+
+#include <vector>
+
+namespace meshquilt::shell {
+
+/// The unit direction maximising the least cosine with `normals` (unit vectors), starting from
+/// `start` (kept if nothing does better): the optimum lies on a normal, or is equidistant from two
+/// or three of them, and all such candidates (of the first 16 normals) are tried. Returns that
+/// least cosine; *best receives the direction.
+double best_visibility(const std::vector<Vec3>& normals, const Vec3& start, Vec3* best);
+
+/// Moves each vertex on a fold of `mesh` (no direction sees all its faces with a cosine of at least
+/// `min_cos`) to the mean of its neighbours, repeatedly, until no fold is left or `rounds` pass.
+/// Returns the number of distinct vertices moved.
+int smooth_folds(Mesh& mesh, double min_cos, int rounds = 10);
+
+}  // namespace meshquilt::shell
