@@ -803,10 +803,44 @@ private:
         const TriangleIndex index(base_.mesh);
         const double tolerance = 0.01 * surface_.shell_height;
         std::vector<char> below(result.mesh.vertices.size(), 0);
+        // The side is judged by the pseudo-normal of the closest feature (Baerentzen and Aanaes
+        // 2005): the face's normal inside it, the sum of the two faces' normals on an edge, the
+        // angle-weighted normal at a vertex. A face's normal alone misjudges points near a sharp
+        // ridge.
+        auto angle_weighted = [&](int vertex) {
+            Vec3 n = Vec3::Zero();
+            for (int f : base_.vertex_faces[static_cast<std::size_t>(vertex)]) {
+                const Tri& t = base_.mesh.faces[static_cast<std::size_t>(f)];
+                int k = 0;
+                while (t[k] != vertex) ++k;
+                const Vec3& x = base_.mesh.vertices[static_cast<std::size_t>(vertex)];
+                const Vec3 e1 = base_.mesh.vertices[static_cast<std::size_t>(t[(k + 1) % 3])] - x;
+                const Vec3 e2 = base_.mesh.vertices[static_cast<std::size_t>(t[(k + 2) % 3])] - x;
+                n += std::atan2(e1.cross(e2).norm(), e1.dot(e2)) * index.face_normal(f);
+            }
+            return n;
+        };
         tbb::parallel_for(std::size_t{0}, below.size(), [&](std::size_t v) {
             const Vec3& p = result.mesh.vertices[v];
             const ClosestHit hit = index.closest(p);
-            below[v] = hit.face >= 0 && (hit.point - p).dot(index.face_normal(hit.face)) > tolerance;
+            if (hit.face < 0 || hit.distance <= tolerance) return;
+            const auto f = static_cast<std::size_t>(hit.face);
+            constexpr double kOn = 1e-9;
+            int zero = 0, one = 0;
+            for (int k = 0; k < 3; ++k) {
+                if (hit.bary[k] < kOn) ++zero;
+                if (hit.bary[k] > 1.0 - kOn) one = k;
+            }
+            Vec3 n = index.face_normal(hit.face);
+            if (zero == 1) {
+                int k = 0;
+                hit.bary.minCoeff(&k);
+                const int g = base_.nb[f][static_cast<std::size_t>((k + 1) % 3)];
+                if (g >= 0) n += index.face_normal(g);
+            } else if (zero >= 2) {
+                n = angle_weighted(base_.mesh.faces[f][one]);
+            }
+            below[v] = (p - hit.point).dot(n) < 0;
         });
         std::vector<char> element(static_cast<std::size_t>(result.element_of_face.empty() ? 0 : result.element_of_face.back() + 1), 0);
         for (std::size_t f = 0; f < result.mesh.faces.size(); ++f)

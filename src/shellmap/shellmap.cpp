@@ -18,8 +18,10 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Intersections_3/Tetrahedron_3_Triangle_3.h>
 
 #include <Eigen/Dense>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -236,12 +238,11 @@ void ShellMap::Impl::limit_heights() {
     const std::size_t V = base.vertices.size(), F = base.faces.size();
     height.assign(V, H);
     // (a) Clearance along the direction: a ray must not meet another part of the base soon.
+    const SM base_sm = to_cgal(base);
+    using Primitive = CGAL::AABB_face_graph_triangle_primitive<SM>;
+    using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+    const Tree tree(faces(base_sm).first, faces(base_sm).second, base_sm);
     {
-        SM sm = to_cgal(base);
-        using Primitive = CGAL::AABB_face_graph_triangle_primitive<SM>;
-        using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-        Tree tree(faces(sm).first, faces(sm).second, sm);
-        tree.accelerate_distance_queries();
         for (std::size_t v = 0; v < V; ++v) {
             if (vertex_faces[v].empty()) continue;
             const Vec3& p = base.vertices[v];
@@ -341,14 +342,54 @@ void ShellMap::Impl::limit_heights() {
             for (const SM::Face_index g : {a, b})
                 if (g.idx() >= F)
                     for (int k = 0; k < 3; ++k) lower[static_cast<std::size_t>(base.faces[g.idx() - F][k])] = 1;
+        // (e) No other part of the base inside a prism: a ridge or a thin part can enter through a
+        // prism's side without touching its vertical edges or its offset face. Faces sharing a
+        // corner with the prism's face are its neighbours and touch it by construction.
+        std::vector<char> intruded(F, 0);
+        tbb::parallel_for(std::size_t{0}, F, [&](std::size_t f) {
+            const Tri& t = base.faces[f];
+            CGAL::Bbox_3 box;
+            std::array<K::Point_3, 6> p;
+            for (int code = 0; code < 6; ++code) {
+                const Vec3 q = world_point(f, code);
+                p[static_cast<std::size_t>(code)] = K::Point_3(q.x(), q.y(), q.z());
+                box += p[static_cast<std::size_t>(code)].bbox();
+            }
+            std::vector<SM::Face_index> near;
+            tree.all_intersected_primitives(box, std::back_inserter(near));
+            for (const SM::Face_index g : near) {
+                const Tri& tg = base.faces[g.idx()];
+                bool neighbour = false;
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b) neighbour = neighbour || tg[a] == t[b];
+                if (neighbour) continue;
+                const K::Triangle_3 tri(base_sm.point(SM::Vertex_index(static_cast<SM::size_type>(tg[0]))),
+                                        base_sm.point(SM::Vertex_index(static_cast<SM::size_type>(tg[1]))),
+                                        base_sm.point(SM::Vertex_index(static_cast<SM::size_type>(tg[2]))));
+                for (int k = 0; k < 3 && !intruded[f]; ++k) {
+                    const TetCodes& c = tets[f][static_cast<std::size_t>(k)];
+                    const K::Tetrahedron_3 tet(p[static_cast<std::size_t>(c[0])], p[static_cast<std::size_t>(c[1])], p[static_cast<std::size_t>(c[2])],
+                                               p[static_cast<std::size_t>(c[3])]);
+                    if (!tet.is_degenerate() && CGAL::do_intersect(tet, tri)) intruded[f] = 1;
+                }
+                if (intruded[f]) break;
+            }
+        });
+        std::size_t intrusions = 0;
+        for (std::size_t f = 0; f < F; ++f)
+            if (intruded[f]) {
+                ++intrusions;
+                for (int k = 0; k < 3; ++k) lower[static_cast<std::size_t>(base.faces[f][k])] = 1;
+            }
         // Lowered to a floor: below it the offset would lie on the base, where rounding alone makes
         // faces meet (what remains is counted).
         for (std::size_t v = 0; v < V; ++v)
             if (lower[v] && height[v] > kMinHeight * H) {
                 height[v] = std::max(kMinHeight * H, 0.7 * height[v]);
+                top[v] = base.vertices[v] + height[v] * dir[v];
                 changed = true;
             }
-        offset_intersections = pairs.size();
+        offset_intersections = pairs.size() + intrusions;
         if (!changed) break;
     }
     update_top();
@@ -529,36 +570,64 @@ void ShellMap::Impl::optimise() {
         bool valid = true;
         if (tex_free[t]) total += energy(t, &valid);
     }
-    std::mt19937_64 rng(opt.seed);
-    std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+    // Colours: free vertices that share a face get different colours. A vertex's energy involves
+    // only the offset corners of its own faces, so the vertices of one colour move independently:
+    // in parallel, each with its own random stream (results do not depend on scheduling).
+    std::vector<int> colour(T, -1);
+    std::vector<std::vector<std::size_t>> by_colour;
+    for (std::size_t t = 0; t < T; ++t) {
+        if (!tex_free[t] || uses[t].empty()) continue;
+        std::vector<char> taken(by_colour.size() + 1, 0);
+        for (int f : tex_faces[t])
+            for (int k = 0; k < 3; ++k) {
+                const int c = colour[static_cast<std::size_t>(tex_corner[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)])];
+                if (c >= 0) taken[static_cast<std::size_t>(c)] = 1;
+            }
+        const auto c = static_cast<std::size_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+        if (c == by_colour.size()) by_colour.emplace_back();
+        colour[t] = static_cast<int>(c);
+        by_colour[c].push_back(t);
+    }
+    auto mix = [](std::uint64_t x) {  // splitmix64
+        x += 0x9E3779B97F4A7C15ULL;
+        x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+        return x ^ (x >> 31);
+    };
+    std::vector<double> gain_of(T, 0.0);
     for (int pass = 0; pass < opt.max_passes; ++pass) {
-        double gain = 0.0;
-        for (std::size_t t = 0; t < T; ++t) {
-            if (!tex_free[t] || uses[t].empty() || step[t] < 1e-3 * max_step[t]) continue;
-            bool valid = true;
-            const double e0 = energy(t, &valid);
-            const Vec2 start = tex_top[t];
-            const double a = angle(rng);
-            const Vec2 d(std::cos(a), std::sin(a));
-            double best = e0;
-            Vec2 best_pos = start;
-            int best_level = -1;
-            for (int level = 0; level < 3; ++level)
-                for (const double sign : {1.0, -1.0}) {
-                    tex_top[t] = start + sign * std::ldexp(step[t], -level) * d;
-                    const double e = energy(t, &valid);
-                    if (valid && e < best) {
-                        best = e;
-                        best_pos = tex_top[t];
-                        best_level = level;
+        std::fill(gain_of.begin(), gain_of.end(), 0.0);
+        for (const auto& group : by_colour)
+            tbb::parallel_for(std::size_t{0}, group.size(), [&](std::size_t i) {
+                const std::size_t t = group[i];
+                if (step[t] < 1e-3 * max_step[t]) return;
+                bool valid = true;
+                const double e0 = energy(t, &valid);
+                const Vec2 start = tex_top[t];
+                std::mt19937_64 rng(mix(opt.seed ^ mix(static_cast<std::uint64_t>(pass) * T + t)));
+                const double a = std::uniform_real_distribution<double>(0.0, 2.0 * M_PI)(rng);
+                const Vec2 d(std::cos(a), std::sin(a));
+                double best = e0;
+                Vec2 best_pos = start;
+                int best_level = -1;
+                for (int level = 0; level < 3; ++level)
+                    for (const double sign : {1.0, -1.0}) {
+                        tex_top[t] = start + sign * std::ldexp(step[t], -level) * d;
+                        const double e = energy(t, &valid);
+                        if (valid && e < best) {
+                            best = e;
+                            best_pos = tex_top[t];
+                            best_level = level;
+                        }
                     }
-                }
-            // Steps adapt: longer after a full step paid, shorter after nothing did.
-            if (best_level == 0) step[t] = std::min(1.5 * step[t], max_step[t]);
-            if (best_level < 0) step[t] *= 0.5;
-            tex_top[t] = best_pos;
-            gain += e0 - best;
-        }
+                // Steps adapt: longer after a full step paid, shorter after nothing did.
+                if (best_level == 0) step[t] = std::min(1.5 * step[t], max_step[t]);
+                if (best_level < 0) step[t] *= 0.5;
+                tex_top[t] = best_pos;
+                gain_of[t] = e0 - best;
+            });
+        double gain = 0.0;
+        for (double g : gain_of) gain += g;
         stats.optimisation_passes = pass + 1;
         if (!(gain > opt.min_relative_gain * total)) break;
         total -= gain;
