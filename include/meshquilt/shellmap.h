@@ -7,18 +7,21 @@
 ///
 /// Construction, in order:
 /// 1. Offset directions: angle-weighted vertex normals, smoothed (more where the base is concave),
-///    kept strictly on the outer side of every incident face.
+///    kept strictly on the outer side of every incident face (where the base folds so that no
+///    direction is, the best-seeing one; such prisms may stay inverted and are counted).
 /// 2. Offset heights: the shell height, limited per vertex so that (a) a ray along the direction
 ///    meets no other part of the base within 2.2 heights (narrow gaps and deep concavities), (b)
-///    heights vary by at most half the edge length along an edge, (c) no prism inverts and (d) the
-///    offset surface neither intersects itself nor the base (exact tests, CGAL).
+///    heights vary by at most half the edge length along an edge, (c) no prism inverts, (d) the
+///    offset surface neither intersects itself nor the base and (e) no other part of the base
+///    enters a prism (exact tests, CGAL).
 /// 3. Texture space: a multi-chart atlas of the base (discs grown breadth first, flattened with
 ///    LSCM at true area, area distortion of each chart at most 1.25) times the height axis [0, H].
 /// 4. Tetrahedra: each prism (a base triangle and its offset) split into three with the diagonals
 ///    chosen by vertex index (Porumbescu et al. 2005), so neighbouring prisms share faces.
 /// 5. Stretch optimisation (Eq. 8-9): random line searches over the texture (u, v) of offset
 ///    vertices inside charts (chart boundaries fixed), keeping every texture tetrahedron positive,
-///    until a pass gains less than a relative 1e-4.
+///    until a pass gains less than a relative 1e-4; vertices of one colour (no shared face) move in
+///    parallel, each with its own random stream, so results do not depend on the thread count.
 ///
 /// Stretch normalisation: Eq. 9 with the texture-to-shell map J (Sander et al. 2001), weighted by
 /// shell volume, times (sum of texture volumes / sum of shell volumes)^(1/3). The cube root makes 1
