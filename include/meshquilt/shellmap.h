@@ -66,8 +66,9 @@ struct ShellStatistics {
     std::vector<ShellLimitedRegion> limited_regions;  ///< largest first, at most 20
     int inverted_world = 0;      ///< shell tetrahedra with volume <= 0 (0 unless the base defeats the construction)
     int inverted_texture = 0;    ///< texture tetrahedra with volume <= 0, after optimisation
-    /// Pairs of faces where the offset surface still meets itself or the base once heights reached
-    /// their floor (0 unless the base defeats the construction).
+    /// Pairs of faces where the offset surface still meets itself or the base, plus prisms that
+    /// another part of the base still enters, once heights reached their floor (0 unless the base
+    /// defeats the construction).
     int offset_intersections = 0;
     double stretch_l2_initial = 0.0;
     double stretch_l2_final = 0.0;

@@ -45,9 +45,6 @@ constexpr double kMaxDistortion = 2.0;
 /// New elements whose embedded area differs from their swatch element's (scaled) by more than this
 /// factor are rescaled.
 constexpr double kMaxSizeDrift = 1.02;
-/// A base vertex whose faces no direction sees with at least this cosine is on a fold (the shell
-/// map's offset directions need 0.1).
-constexpr double kShellFoldCos = 0.1;
 
 /// The base as the synthesis uses it: exact duplicate vertices welded, closed inside-out components
 /// flipped, long edges split.
@@ -240,7 +237,7 @@ private:
             // Folds (a scan's crumpled slivers, where no direction sees every face around a vertex
             // from outside) would leave shell prisms inverted: such vertices of our copy move to
             // their neighbours' mean.
-            surface_.base_fold_vertices_smoothed = shell::smooth_folds(base_.mesh, kShellFoldCos);
+            surface_.base_fold_vertices_smoothed = shell::smooth_folds(base_.mesh, shell::kMinSeeingCos);
             if (surface_.base_fold_vertices_smoothed > 0)
                 warnings_.push_back("the base folds onto itself at " + std::to_string(surface_.base_fold_vertices_smoothed) +
                                     " vertices; they were smoothed (on the synthesis's copy) so the shell can be built there");
@@ -292,7 +289,7 @@ private:
         if (surface_.shell.inverted_world > 0 || surface_.shell.offset_intersections > 0)
             warnings_.push_back("the shell could not be made valid everywhere (" + std::to_string(surface_.shell.inverted_world) +
                                 " inverted tetrahedra, " + std::to_string(surface_.shell.offset_intersections) +
-                                " offset face pairs still meeting): the base is crumpled there");
+                                " places where the offset surface or another part of the base still meets the shell): the base is crumpled there");
     }
 
     /// The unprocessed face with the most processed faces around its corners; ties at random.

@@ -53,7 +53,7 @@ constexpr double kMinHeight = 0.02;
 /// such corners may go down to this fraction.
 constexpr double kMinPrismHeight = 1e-4;
 /// Offset directions must make at least this cosine with every incident face's normal.
-constexpr double kMinDirectionCos = 0.1;
+constexpr double kMinDirectionCos = shell::kMinSeeingCos;
 
 /// Corner code of a prism: local corner c (0..2) on the base (c) or on the offset (c + 3).
 using TetCodes = std::array<int, 4>;

@@ -8,6 +8,10 @@
 
 namespace meshquilt::shell {
 
+/// Offset directions must see every face around their vertex with at least this cosine; a vertex
+/// where no direction does is on a fold.
+constexpr double kMinSeeingCos = 0.1;
+
 /// The unit direction maximising the least cosine with `normals` (unit vectors), starting from
 /// `start` (kept if nothing does better): the optimum lies on a normal, or is equidistant from two
 /// or three of them, and all such candidates (of the first 16 normals) are tried. Returns that
