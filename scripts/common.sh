@@ -6,7 +6,7 @@ BUILD="${MESHQUILT_BUILD_DIR:-$ROOT/build}"
 
 PACKAGES=(g++ cmake ninja-build pkg-config ccache python3
   libcgal-dev libeigen3-dev libtbb-dev libmaxflow-dev libcli11-dev nlohmann-json3-dev libnanoflann-dev
-  libgtest-dev libbenchmark-dev)
+  libgtest-dev libbenchmark-dev libopenvdb-dev libboost-iostreams-dev lib3mf-dev)
 
 install_missing() {
   local missing=()

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,6 +24,23 @@ struct Command {
 void add_inspect_command(CLI::App& root, std::vector<Command>& commands);
 void add_plane_command(CLI::App& root, std::vector<Command>& commands);
 void add_surface_command(CLI::App& root, std::vector<Command>& commands);
+void add_print_command(CLI::App& root, std::vector<Command>& commands);
+
+/// The print options, shared by `meshquilt print` and the main job's --print.
+struct PrintArgs {
+    std::string output, mode = "fused";
+    double size_mm = 0.0, unit_mm = 0.0, min_thickness = 0.8, min_clearance = 0.3, voxel_mm = 0.0, adaptivity = 0.2,
+           base_thickness = 2.0, attach_mm = 0.2;
+    std::uint64_t max_voxels = 200'000'000;
+    bool force = false;
+};
+/// Registers --size-mm, --unit-mm, --mode, ... (and -o when `with_output`).
+void add_print_options(CLI::App* app, PrintArgs& args, bool with_output);
+/// Checks what can be checked before any work: the file type and the size. \throw InvalidInput
+void check_print_args(const PrintArgs& args);
+/// Prepares and writes the print of `decoration` (+ `base`); writes the JSON report to
+/// `report_path` when not empty, also when a check fails.
+void run_print(const PrintArgs& args, const Mesh& decoration, const Mesh* base, const std::string& name, const std::string& report_path);
 
 /// Global flags, set by main() before any command runs.
 struct GlobalFlags {

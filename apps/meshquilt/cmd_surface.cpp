@@ -21,6 +21,8 @@ struct SurfaceArgs {
     int symmetry = 0;
     std::uint64_t seed = 1;
     bool with_base = false, repair = false, no_optimise = false;
+    PrintArgs print;
+    std::string print_report;
 };
 
 std::string num(double v) {
@@ -36,7 +38,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         "surface", "Cover a base mesh with a geometric texture grown from a swatch (the default command: `meshquilt BASE SWATCH -o OUT`)");
     app->add_option("base", a->base, "Base mesh (OBJ, PLY, STL, OFF) to decorate; it is never changed")->required();
     app->add_option("swatch", a->swatch, "Swatch mesh: a slab of separate elements")->required();
-    app->add_option("-o,--output", a->output, "Output mesh (.obj with one group per element, .ply, .stl)")->required();
+    auto* out_opt = app->add_option("-o,--output", a->output, "Output mesh (.obj with one group per element, .ply, .stl)");
     auto* scale = app->add_option("--scale", a->scale, "Swatch footprint's longer side as a fraction of the base's bounding-box diagonal")
                       ->capture_default_str();
     app->add_option("--swatch-size", a->swatch_size, "Swatch footprint's longer side in base units (instead of --scale)")->excludes(scale);
@@ -53,7 +55,14 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
     app->add_flag("--no-shell-optimisation", a->no_optimise, "Build the shell map without its stretch optimisation");
     app->add_option("--report", a->report, "Write a JSON quality report here");
     app->add_flag("--repair", a->repair, "Repair safe input problems (degenerate faces, duplicate vertices) and report them");
-    commands.push_back({app, [a]() {
+    auto* print_opt = app->add_option("--print", a->print.output,
+                                      "Also write a printable .3mf/.stl in millimetres (fused: decoration and base as one solid; "
+                                      "separate: the elements only); needs --size-mm or --unit-mm");
+    add_print_options(app, a->print, false);
+    app->add_option("--print-report", a->print_report, "Write the print's JSON report here");
+    commands.push_back({app, [a, out_opt, print_opt]() {
+        if (out_opt->count() == 0 && print_opt->count() == 0) throw InvalidInput("give an output: -o OUT (mesh) and/or --print OUT.3mf|OUT.stl");
+        if (print_opt->count() > 0) check_print_args(a->print);
         const auto t0 = std::chrono::steady_clock::now();
         const Mesh base = load_input(a->base, a->repair, false);
         const Mesh swatch = load_input(a->swatch, a->repair, true);
@@ -92,7 +101,13 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         wo.comment = "meshquilt " + a->base + " " + a->swatch +
                      (a->swatch_size > 0 ? " --swatch-size " + num(a->swatch_size) : " --scale " + num(a->scale)) +
                      (a->height > 0 ? " --height " + num(a->height) : "") + " --seed " + std::to_string(a->seed);
-        write_mesh(a->output, out, wo);
+        if (!a->output.empty()) write_mesh(a->output, out, wo);
+        if (!a->print.output.empty()) {
+            // Fused: the decoration and its base make one solid. Separate (print-in-place): the
+            // elements alone; the base is the form they were grown on.
+            const bool with_base_body = a->print.mode != "separate";
+            run_print(a->print, r.mesh, with_base_body ? &base : nullptr, a->base + " + " + a->swatch, a->print_report);
+        }
         if (!a->report.empty()) {
             const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             nlohmann::json j = report_to_json(r.report, total);
@@ -141,7 +156,8 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
             write_file_atomic(a->report, j.dump(2) + "\n");
         }
         if (!global_flags().quiet)
-            std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces -> " << a->output << '\n';
+            std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces"
+                      << (a->output.empty() ? std::string() : " -> " + a->output) << '\n';
         return 0;
     }});
 }

@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
     add_plane_command(root, commands);
     add_inspect_command(root, commands);
     add_surface_command(root, commands);
+    add_print_command(root, commands);
     // Global flags (-q, -v) may also follow a command's own arguments.
     for (auto& c : commands) c.app->fallthrough();
     // `meshquilt BASE SWATCH ...` is `meshquilt surface BASE SWATCH ...`: the first argument that is

@@ -4,6 +4,7 @@
 // parsing without iostreams. Nothing here is public API.
 
 #include "meshquilt/errors.h"
+#include "meshquilt/io.h"
 #include "meshquilt/mesh.h"
 
 #include <charconv>
@@ -22,6 +23,10 @@ Mesh read_obj(const std::string& path, std::string_view data);
 Mesh read_off(const std::string& path, std::string_view data);
 Mesh read_ply(const std::string& path, std::string_view data);
 Mesh read_stl(const std::string& path, std::string_view data);
+Mesh read_3mf(const std::string& path, std::string_view data);
+/// The bytes of a 3MF file (lib3mf): millimetres, one object per element of `options`.
+std::string format_3mf(const std::string& path, const Mesh& mesh, const WriteOptions& options);
+
 
 /// Lower-cased extension including the dot ("" when there is none).
 std::string lower_extension(const std::string& path);

@@ -137,7 +137,24 @@ std::string format_stl(const Mesh& mesh, const WriteOptions& options) {
     std::string out = header;
     out.reserve(84 + mesh.faces.size() * 50);
     append_le(out, static_cast<std::uint32_t>(mesh.faces.size()));
-    for (const Tri& t : mesh.faces) {
+    // ADMesh (and PrusaSlicer, which embeds it) takes a file for ASCII when none of the 128 bytes
+    // after the header exceeds 127, as for a box at integer coordinates. A facet whose normal has
+    // a negative component has such a byte (the float's sign), so one goes first when needed.
+    std::vector<std::size_t> order(mesh.faces.size());
+    for (std::size_t f = 0; f < order.size(); ++f) order[f] = f;
+    const auto negative_normal = [&](std::size_t f) {
+        const Tri& t = mesh.faces[f];
+        const Vec3 n = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+        return (n.array() < 0.0).any();
+    };
+    if (!order.empty() && !negative_normal(0))
+        for (std::size_t f = 1; f < order.size(); ++f)
+            if (negative_normal(f)) {
+                std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(f), order.begin() + static_cast<std::ptrdiff_t>(f) + 1);
+                break;
+            }
+    for (std::size_t f : order) {
+        const Tri& t = mesh.faces[f];
         const Vec3& a = mesh.vertices[static_cast<std::size_t>(t[0])];
         const Vec3& b = mesh.vertices[static_cast<std::size_t>(t[1])];
         const Vec3& c = mesh.vertices[static_cast<std::size_t>(t[2])];
@@ -177,10 +194,11 @@ void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o
     if (ext == ".obj") format = format_obj;
     else if (ext == ".ply") format = format_ply;
     else if (ext == ".stl") format = format_stl;
-    else
+    else if (ext != ".3mf")
         throw IoError(path + ": cannot write: unknown mesh file extension " +
-                      (ext.empty() ? std::string("(none)") : "'" + ext + "'") + " (supported: .obj, .ply, .stl)");
+                      (ext.empty() ? std::string("(none)") : "'" + ext + "'") + " (supported: .obj, .ply, .stl, .3mf)");
     check_writable(path, mesh, options);
+    if (ext == ".3mf") return write_file_atomic(path, io_detail::format_3mf(path, mesh, options));
     write_file_atomic(path, format(mesh, options));
 }
 

@@ -69,8 +69,9 @@ Reader reader_for(const std::string& path) {
     if (ext == ".off") return io_detail::read_off;
     if (ext == ".ply") return io_detail::read_ply;
     if (ext == ".stl") return io_detail::read_stl;
+    if (ext == ".3mf") return io_detail::read_3mf;
     throw IoError(path + ": cannot read: unknown mesh file extension " +
-                  (ext.empty() ? std::string("(none)") : "'" + ext + "'") + " (supported: .obj, .off, .ply, .stl)");
+                  (ext.empty() ? std::string("(none)") : "'" + ext + "'") + " (supported: .obj, .off, .ply, .stl, .3mf)");
 }
 
 Mesh parse_with(Reader reader, const std::string& name, std::string_view data) {
