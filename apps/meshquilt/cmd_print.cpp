@@ -129,6 +129,7 @@ void run_print(const PrintArgs& a, const Mesh& decoration, const Mesh* base, con
     WriteOptions wo;
     if (o.mode == PrintMode::Separate) {
         wo.element_of_face = r.model.element_of_face;
+        wo.assembly_3mf = true;  // the bodies stay together in the slicer
         wo.group_names.resize(static_cast<std::size_t>(r.model.num_elements));
         for (int e = 0; e < r.model.num_elements; ++e) wo.group_names[static_cast<std::size_t>(e)] = "body_" + std::to_string(e);
     }

@@ -43,9 +43,14 @@ struct WriteOptions {
     /// OBJ group name per element id, overriding `element_<id>` where given and not empty (e.g.
     /// "base"); names must not contain whitespace.
     std::vector<std::string> group_names;
+    /// 3MF only: the element objects become the components of one assembly object, the only
+    /// build item, so slicers place and arrange them as one piece (a print-in-place fabric keeps
+    /// its rings together). Otherwise every element object is its own build item.
+    bool assembly_3mf = false;
 };
 
-/// Writes by extension (.obj, .ply, .stl), atomically.
+/// Writes by extension (.obj, .ply, .stl, .3mf), atomically. 3MF: lib3mf, millimetres (the
+/// coordinates are taken as mm), one mesh object per element.
 /// \throw IoError the directory is not writable or the disk is full; the target is untouched then
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
 

@@ -207,15 +207,8 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
     rep.input_bodies = static_cast<int>(deco.closed.size() + basep.closed.size()) + (basep.open.empty() ? 0 : 1);
     rep.open_base_thickened = basep.open.empty() ? 0 : 1;
 
-    // The decoration's thinnest features: measured in both modes (they also set the voxel size).
-    const ElementMesh elements = concatenate(deco.closed);
-    const print_detail::ElementThickness th = print_detail::element_thickness(elements);
-    std::vector<double> face_w(elements.mesh.faces.size());
-    for (std::size_t f = 0; f < face_w.size(); ++f) face_w[f] = face_area(elements.mesh, f);
-    const double thin_robust = weighted_percentile(th.of_face, face_w, 0.05);
     rep.seconds_prepare = since(t0);
 
-    const auto t1 = Clock::now();
     if (o.mode == PrintMode::Fused) {
         double closed_area = 0.0;
         for (const Mesh& m : deco.closed) closed_area += area(m);
@@ -226,6 +219,23 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
             return print_detail::estimate_band_voxels(closed_area, v, 6.0 + 2.0 * o.attach_mm / v) +
                    (sheet ? print_detail::estimate_band_voxels(sheet_area, v, 2.0 * ((0.5 * o.base_thickness_mm + o.attach_mm) / v + 4.0)) : 0);
         };
+        const Vec3 size_mm = box.size() * s;
+        const auto refuse = [&](double voxel) {
+            throw InvalidInput(name + ": a " + mm(voxel) + " voxel grid over this " + mm(size_mm.maxCoeff()) + " model needs about " +
+                               std::to_string(estimate(voxel)) + " narrow-band voxels (about " +
+                               std::to_string(estimate(voxel) / (1ull << 20) * 30) + " MiB), over the limit of " +
+                               std::to_string(o.max_voxels) + "; use a larger --voxel-mm, a smaller --size-mm or raise --max-voxels");
+        };
+        // A given voxel size is judged before anything heavy runs.
+        if (o.voxel_mm > 0.0 && (estimate(o.voxel_mm) > o.max_voxels || size_mm.maxCoeff() / o.voxel_mm > 1e8)) refuse(o.voxel_mm);
+        // The decoration's thinnest features (they set a derived voxel size, and are warned about).
+        const auto tp = Clock::now();
+        const ElementMesh elements = concatenate(deco.closed);
+        const print_detail::ElementThickness th = print_detail::element_thickness(elements);
+        std::vector<double> face_w(elements.mesh.faces.size());
+        for (std::size_t f = 0; f < face_w.size(); ++f) face_w[f] = face_area(elements.mesh, f);
+        const double thin_robust = weighted_percentile(th.of_face, face_w, 0.05);
+        rep.seconds_prepare += since(tp);
         double voxel = o.voxel_mm;
         rep.voxel_derived = voxel <= 0.0;
         if (rep.voxel_derived) {
@@ -243,12 +253,7 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
         }
         rep.voxel_mm = voxel;
         rep.voxels_estimated = estimate(voxel);
-        const Vec3 size_mm = box.size() * s;
-        if (rep.voxels_estimated > o.max_voxels || size_mm.maxCoeff() / voxel > 1e8)
-            throw InvalidInput(name + ": a " + mm(voxel) + " voxel grid over this " + mm(size_mm.maxCoeff()) + " model needs about " +
-                               std::to_string(rep.voxels_estimated) + " narrow-band voxels (about " +
-                               std::to_string(rep.voxels_estimated * 30 / (1ull << 20)) + " MiB), over the limit of " +
-                               std::to_string(o.max_voxels) + "; use a larger --voxel-mm, a smaller --size-mm or raise --max-voxels");
+        if (rep.voxels_estimated > o.max_voxels || size_mm.maxCoeff() / voxel > 1e8) refuse(voxel);
         print_detail::VoxelInput vin;
         for (const Mesh& m : deco.closed) vin.closed.push_back(&m);
         for (const Mesh& m : basep.closed) vin.closed_base.push_back(&m);
@@ -323,7 +328,6 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
         rep.violations = std::move(c.violations);
         rep.checks_passed = rep.violations.empty();
     }
-    (void)t1;
 
     // What we write, checked as a slicer would: closed, edge-manifold, outward.
     Mesh& out = result.model.mesh;

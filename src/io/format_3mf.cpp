@@ -36,6 +36,18 @@ void ok(HRESULT r, const std::string& path, const char* what, NMR::PLib3MFBase* 
     if (r != LIB3MF_OK) throw IoError(path + ": 3MF: " + what + " failed: " + last_error(instance));
 }
 
+/// The transform `outer` after `inner` (3MF transforms: rows of a 3 x 4 affine matrix).
+NMR::MODELTRANSFORM compose(const NMR::MODELTRANSFORM& outer, const NMR::MODELTRANSFORM& inner) {
+    NMR::MODELTRANSFORM r{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j) {
+            float v = j == 3 ? outer.m_fFields[i][3] : 0.0f;
+            for (int k = 0; k < 3; ++k) v += outer.m_fFields[i][k] * inner.m_fFields[k][j];
+            r.m_fFields[i][j] = v;
+        }
+    return r;
+}
+
 /// A UUID (version 4 layout) drawn from a hash of the geometry and a counter, so the same mesh
 /// gives the same file (lib3mf would draw random ones, and output must be reproducible).
 class UuidSource {
@@ -83,6 +95,15 @@ std::string format_3mf(const std::string& path, const Mesh& mesh, const WriteOpt
     std::map<int, std::vector<std::size_t>> faces_of;
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)
         faces_of[options.element_of_face.empty() ? 0 : options.element_of_face[f]].push_back(f);
+    const auto add_item = [&](NMR::PLib3MFModelObjectResource* object) {
+        NMR::PLib3MFModelBuildItem* item = nullptr;
+        ok(NMR::lib3mf_model_addbuilditem(model, object, nullptr, &item), path, "adding a build item", model);
+        Released item_guard{item};
+        ok(NMR::lib3mf_builditem_setuuidutf8(item, uuid.next().c_str()), path, "setting a build item's UUID", item);
+    };
+    // 3MF resources must come before what refers to them: the assembly is added after its parts.
+    const bool assembly = options.assembly_3mf && faces_of.size() > 1;
+    std::vector<std::unique_ptr<Released>> parts;
     std::vector<int> index(mesh.vertices.size(), -1);
     for (const auto& [id, faces] : faces_of) {
         std::vector<NMR::MODELMESHVERTEX> verts;
@@ -106,7 +127,8 @@ std::string format_3mf(const std::string& path, const Mesh& mesh, const WriteOpt
         for (int v : used) index[static_cast<std::size_t>(v)] = -1;
         NMR::PLib3MFModelMeshObject* object = nullptr;
         ok(NMR::lib3mf_model_addmeshobject(model, &object), path, "adding an object", model);
-        Released object_guard{object};
+        parts.push_back(std::make_unique<Released>());
+        parts.back()->p = object;
         std::string name = options.element_of_face.empty() ? "meshquilt" : "element_" + std::to_string(id);
         if (id >= 0 && static_cast<std::size_t>(id) < options.group_names.size() && !options.group_names[static_cast<std::size_t>(id)].empty())
             name = options.group_names[static_cast<std::size_t>(id)];
@@ -115,10 +137,21 @@ std::string format_3mf(const std::string& path, const Mesh& mesh, const WriteOpt
         ok(NMR::lib3mf_meshobject_setgeometry(object, verts.data(), static_cast<DWORD>(verts.size()), tris.data(),
                                               static_cast<DWORD>(tris.size())),
            path, "setting an object's geometry", object);
-        NMR::PLib3MFModelBuildItem* item = nullptr;
-        ok(NMR::lib3mf_model_addbuilditem(model, object, nullptr, &item), path, "adding a build item", model);
-        Released item_guard{item};
-        ok(NMR::lib3mf_builditem_setuuidutf8(item, uuid.next().c_str()), path, "setting a build item's UUID", item);
+        if (!assembly) add_item(object);
+    }
+    if (assembly) {
+        NMR::PLib3MFModelComponentsObject* whole = nullptr;
+        ok(NMR::lib3mf_model_addcomponentsobject(model, &whole), path, "adding the assembly", model);
+        Released whole_guard{whole};
+        ok(NMR::lib3mf_object_setnameutf8(whole, "meshquilt"), path, "naming the assembly", whole);
+        ok(NMR::lib3mf_object_setuuidutf8(whole, uuid.next().c_str()), path, "setting the assembly's UUID", whole);
+        for (const auto& part : parts) {
+            NMR::PLib3MFModelComponent* component = nullptr;
+            ok(NMR::lib3mf_componentsobject_addcomponent(whole, part->p, nullptr, &component), path, "adding a component", whole);
+            Released component_guard{component};
+            ok(NMR::lib3mf_component_setuuidutf8(component, uuid.next().c_str()), path, "setting a component's UUID", component);
+        }
+        add_item(whole);
     }
 
     NMR::PLib3MFModelWriter* writer = nullptr;
@@ -145,19 +178,7 @@ Mesh read_3mf(const std::string& path, std::string_view data) {
     ok(NMR::lib3mf_model_getbuilditems(model, &items), path, "listing the build items", model);
     Released items_guard{items};
     Mesh out;
-    BOOL more = false;
-    while (NMR::lib3mf_builditemiterator_movenext(items, &more) == LIB3MF_OK && more) {
-        NMR::PLib3MFModelBuildItem* item = nullptr;
-        ok(NMR::lib3mf_builditemiterator_getcurrent(items, &item), path, "reading a build item", items);
-        Released item_guard{item};
-        NMR::PLib3MFModelObjectResource* object = nullptr;
-        ok(NMR::lib3mf_builditem_getobjectresource(item, &object), path, "reading a build item's object", item);
-        Released object_guard{object};
-        BOOL is_mesh = false;
-        ok(NMR::lib3mf_object_ismeshobject(object, &is_mesh), path, "reading an object's type", object);
-        if (!is_mesh) fail(path, "a build item is a components object; only mesh objects are supported");
-        NMR::MODELTRANSFORM xf{};
-        ok(NMR::lib3mf_builditem_getobjecttransform(item, &xf), path, "reading a build item's transform", item);
+    const auto append_mesh = [&](NMR::PLib3MFModelObjectResource* object, const NMR::MODELTRANSFORM& xf) {
         DWORD nv = 0, nt = 0;
         ok(NMR::lib3mf_meshobject_getvertexcount(object, &nv), path, "reading the vertex count", object);
         ok(NMR::lib3mf_meshobject_gettrianglecount(object, &nt), path, "reading the triangle count", object);
@@ -178,6 +199,41 @@ Mesh read_3mf(const std::string& path, std::string_view data) {
                 if (t.m_nIndices[k] >= nv) fail(path, "a triangle's vertex index is out of range");
             out.faces.emplace_back(base + static_cast<int>(t.m_nIndices[0]), base + static_cast<int>(t.m_nIndices[1]),
                                    base + static_cast<int>(t.m_nIndices[2]));
+        }
+    };
+    BOOL more = false;
+    while (NMR::lib3mf_builditemiterator_movenext(items, &more) == LIB3MF_OK && more) {
+        NMR::PLib3MFModelBuildItem* item = nullptr;
+        ok(NMR::lib3mf_builditemiterator_getcurrent(items, &item), path, "reading a build item", items);
+        Released item_guard{item};
+        NMR::PLib3MFModelObjectResource* object = nullptr;
+        ok(NMR::lib3mf_builditem_getobjectresource(item, &object), path, "reading a build item's object", item);
+        Released object_guard{object};
+        NMR::MODELTRANSFORM xf{};
+        ok(NMR::lib3mf_builditem_getobjecttransform(item, &xf), path, "reading a build item's transform", item);
+        BOOL is_mesh = false;
+        ok(NMR::lib3mf_object_ismeshobject(object, &is_mesh), path, "reading an object's type", object);
+        if (is_mesh) {
+            append_mesh(object, xf);
+            continue;
+        }
+        // An assembly: its components (mesh objects; one level deep), each with its transform
+        // followed by the build item's.
+        DWORD count = 0;
+        ok(NMR::lib3mf_componentsobject_getcomponentcount(object, &count), path, "reading an assembly", object);
+        for (DWORD c = 0; c < count; ++c) {
+            NMR::PLib3MFModelComponent* component = nullptr;
+            ok(NMR::lib3mf_componentsobject_getcomponent(object, c, &component), path, "reading a component", object);
+            Released component_guard{component};
+            NMR::PLib3MFModelObjectResource* part = nullptr;
+            ok(NMR::lib3mf_component_getobjectresource(component, &part), path, "reading a component's object", component);
+            Released part_guard{part};
+            BOOL part_is_mesh = false;
+            ok(NMR::lib3mf_object_ismeshobject(part, &part_is_mesh), path, "reading an object's type", part);
+            if (!part_is_mesh) fail(path, "an assembly nests another assembly; only one level is supported");
+            NMR::MODELTRANSFORM cx{};
+            ok(NMR::lib3mf_component_gettransform(component, &cx), path, "reading a component's transform", component);
+            append_mesh(part, compose(xf, cx));
         }
     }
     return out;
