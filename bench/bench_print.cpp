@@ -60,6 +60,9 @@ void run(benchmark::State& state, const std::string& swatch, mq::PrintMode mode)
     state.counters["bodies"] = p.bodies;
     state.counters["voxels_M"] = static_cast<double>(p.voxels_active) / 1e6;
     state.counters["volume_cm3"] = p.volume_mm3 / 1000.0;
+    state.counters["voids"] = p.voids_filled;
+    state.counters["scraps"] = p.scraps_dropped;
+    state.counters["loose"] = p.loose_bodies;
     state.counters["s_prepare"] = p.seconds_prepare;
     state.counters["s_voxelise"] = p.seconds_voxelise;
     state.counters["s_mesh"] = p.seconds_mesh;

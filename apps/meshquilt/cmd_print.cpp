@@ -62,6 +62,7 @@ nlohmann::json print_report_json(const PrintReport& r) {
         j["voxels_estimated"] = r.voxels_estimated;
         j["voxels_active"] = r.voxels_active;
         j["voids_filled"] = r.voids_filled;
+        j["scraps_dropped"] = r.scraps_dropped;
         j["loose_bodies"] = r.loose_bodies;
     }
     return j;

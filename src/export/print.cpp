@@ -264,6 +264,7 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
         vin.adaptivity = o.adaptivity;
         print_detail::VoxelSolid solid = print_detail::voxel_union(vin, o.reporter);
         rep.voids_filled = solid.voids_filled;
+        rep.scraps_dropped = solid.scraps_dropped;
         rep.voxels_active = solid.active_voxels;
         rep.seconds_voxelise = solid.seconds_voxelise;
         rep.seconds_mesh = solid.seconds_mesh;

@@ -63,6 +63,7 @@ struct VoxelSolid {
     double seconds_voxelise = 0.0;
     double seconds_mesh = 0.0;
     int voids_filled = 0;
+    int scraps_dropped = 0;  ///< closed parts of (nearly) no volume left by adaptive meshing
 };
 struct VoxelInput {
     std::vector<const Mesh*> closed;       ///< elements

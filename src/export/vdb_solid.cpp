@@ -208,11 +208,18 @@ VoxelSolid voxel_union(const VoxelInput& in, const Reporter& reporter) {
             const Tri& t = m.faces[f];
             volume[static_cast<std::size_t>(comp[f])] += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]]));
         }
-        for (double v : volume) out.voids_filled += v < 0.0 ? 1 : 0;
-        if (out.voids_filled > 0) {
+        // Adaptive meshing can also leave a flat closed scrap (two triangles back to back, say)
+        // whose volume is zero up to rounding: any part under a hundredth of a voxel goes too.
+        const double scrap = 6.0 * 0.01 * voxel * voxel * voxel;  // `volume` holds 6 x the volume
+        std::vector<char> drop(volume.size(), 0);
+        for (std::size_t c = 0; c < volume.size(); ++c) {
+            if (volume[c] < -scrap) ++out.voids_filled, drop[c] = 1;
+            else if (volume[c] < scrap) ++out.scraps_dropped, drop[c] = 1;
+        }
+        if (out.voids_filled + out.scraps_dropped > 0) {
             std::size_t kept = 0;
             for (std::size_t f = 0; f < m.faces.size(); ++f)
-                if (volume[static_cast<std::size_t>(comp[f])] >= 0.0) m.faces[kept++] = m.faces[f];
+                if (!drop[static_cast<std::size_t>(comp[f])]) m.faces[kept++] = m.faces[f];
             m.faces.resize(kept);
         }
     }
