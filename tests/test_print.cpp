@@ -203,6 +203,14 @@ TEST(PrintChecks, ClearanceOfTwoBoxesIsExact) {
     const BodyChecks far = check_bodies(concatenate(std::vector<Mesh>{cube(1.0), cube(1.0, Vec3(7.5, 0, 0))}), 0.1, 0.3);
     EXPECT_NEAR(far.min_clearance, 6.5, 1e-12);
     EXPECT_TRUE(far.violations.empty());
+    // Two dense tori 13 apart centre to centre (outer radius 3.5): the bound from vertex distances
+    // and one exact pass find 6 without pairing up every face of the two.
+    const BodyChecks tori = check_bodies(concatenate(std::vector<Mesh>{torus(3.0, 0.5, 96, 48), translated(torus(3.0, 0.5, 96, 48), Vec3(13, 0, 0))}), 0.1, 0.3);
+    EXPECT_NEAR(tori.min_clearance, 6.0, 1e-9);
+    // Bad element ids are refused, not read out of range.
+    ElementMesh bad = concatenate(std::vector<Mesh>{cube(1.0), cube(1.0, Vec3(3, 0, 0))});
+    bad.element_of_face[5] = 7;
+    EXPECT_TRUE(test::throws_with<InvalidInput>([&] { (void)check_bodies(bad, 0.1, 0.3); }, {"face 5", "element id 7"}));
     // Cutting cubes: clearance 0, one intersecting pair.
     const BodyChecks cut = check_bodies(concatenate(std::vector<Mesh>{cube(1.0), cube(1.0, Vec3(0.5, 0.5, 0.5))}), 0.1, 0.3);
     EXPECT_EQ(cut.min_clearance, 0.0);
@@ -268,7 +276,7 @@ TEST(PrintSeparate, FailedChecksThrowWithTheReportAndForceWrites) {
         EXPECT_NE(what.find("clearance 0.1 mm"), std::string::npos) << what;
         EXPECT_NE(what.find("--force"), std::string::npos) << what;
         ASSERT_EQ(e.report.violations.size(), 1u);
-        EXPECT_NEAR(e.report.violations[0].value_mm, 0.1, 1e-9);
+        EXPECT_NEAR(e.report.violations[0].value_mm, 0.1, 1e-6);  // coordinates are rounded to float, as in the file
         EXPECT_FALSE(e.report.checks_passed);
     }
     o.force = true;
@@ -306,6 +314,8 @@ TEST(PrintErrors, BadBodiesAndOptionsAreRefusedWithClearMessages) {
     bad([](PrintOptions& p) { p.adaptivity = 2.0; }, {"--adaptivity"});
     bad([](PrintOptions& p) { p.min_clearance_mm = -1.0; }, {"--min-clearance"});
     bad([](PrintOptions& p) { p.attach_mm = -1.0; }, {"--attach-mm"});
+    // Voxels larger than the whole model leave nothing: refused, not an empty file.
+    bad([](PrintOptions& p) { p.voxel_mm = 5.0; }, {"c.obj", "nothing is left", "--voxel-mm"});
     // A voxel grid that would exhaust memory is refused before any voxel is made.
     bad([](PrintOptions& p) { p.unit_mm = 1000.0; p.voxel_mm = 1e-3; }, {"c.obj", "voxels", "--voxel-mm"});
 }

@@ -102,12 +102,6 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                      (a->swatch_size > 0 ? " --swatch-size " + num(a->swatch_size) : " --scale " + num(a->scale)) +
                      (a->height > 0 ? " --height " + num(a->height) : "") + " --seed " + std::to_string(a->seed);
         if (!a->output.empty()) write_mesh(a->output, out, wo);
-        if (!a->print.output.empty()) {
-            // Fused: the decoration and its base make one solid. Separate (print-in-place): the
-            // elements alone; the base is the form they were grown on.
-            const bool with_base_body = a->print.mode != "separate";
-            run_print(a->print, r.mesh, with_base_body ? &base : nullptr, a->base + " + " + a->swatch, a->print_report);
-        }
         if (!a->report.empty()) {
             const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             nlohmann::json j = report_to_json(r.report, total);
@@ -154,6 +148,12 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                               {"seconds_optimise", h.seconds_optimise}};
             }
             write_file_atomic(a->report, j.dump(2) + "\n");
+        }
+        if (!a->print.output.empty()) {
+            // Fused: the decoration and its base make one solid. Separate (print-in-place): the
+            // elements alone; the base is the form they were grown on.
+            const bool with_base_body = a->print.mode != "separate";
+            run_print(a->print, r.mesh, with_base_body ? &base : nullptr, a->base + " + " + a->swatch, a->print_report);
         }
         if (!global_flags().quiet)
             std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces"

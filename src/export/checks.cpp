@@ -4,6 +4,7 @@
 // phase, exact CGAL triangle-triangle squared distances).
 
 #include "core/triangle_index.h"
+#include "meshquilt/errors.h"
 #include "print_detail.h"
 
 #include <CGAL/AABB_traits.h>
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 
 namespace meshquilt::print_detail {
 
@@ -34,6 +36,43 @@ inline Vec3 vec(const P3& p) { return {p.x(), p.y(), p.z()}; }
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
+
+std::vector<Mesh> split_elements(const ElementMesh& model) {
+    const std::size_t n = static_cast<std::size_t>(std::max(model.num_elements, 0));
+    if (model.element_of_face.size() != model.mesh.faces.size())
+        throw InvalidInput("element_of_face has " + std::to_string(model.element_of_face.size()) + " entries for " +
+                           std::to_string(model.mesh.faces.size()) + " faces");
+    std::vector<std::vector<std::size_t>> faces_of(n);
+    const auto nv = static_cast<long long>(model.mesh.vertices.size());
+    for (std::size_t f = 0; f < model.mesh.faces.size(); ++f) {
+        const int e = model.element_of_face[f];
+        if (e < 0 || static_cast<std::size_t>(e) >= n)
+            throw InvalidInput("face " + std::to_string(f) + " has element id " + std::to_string(e) + ", outside [0, " + std::to_string(n) + ")");
+        for (int k = 0; k < 3; ++k)
+            if (model.mesh.faces[f][k] < 0 || model.mesh.faces[f][k] >= nv)
+                throw InvalidInput("face " + std::to_string(f) + " has vertex index " + std::to_string(model.mesh.faces[f][k]) + " out of range");
+        faces_of[static_cast<std::size_t>(e)].push_back(f);
+    }
+    std::vector<Mesh> bodies(n);
+    std::vector<int> index(model.mesh.vertices.size(), -1), stamp(model.mesh.vertices.size(), -1);
+    for (std::size_t e = 0; e < n; ++e) {
+        Mesh& body = bodies[e];
+        for (std::size_t f : faces_of[e]) {
+            Tri t;
+            for (int k = 0; k < 3; ++k) {
+                const auto v = static_cast<std::size_t>(model.mesh.faces[f][k]);
+                if (stamp[v] != static_cast<int>(e)) {  // first use in this element (a vertex shared by two is copied)
+                    stamp[v] = static_cast<int>(e);
+                    index[v] = static_cast<int>(body.vertices.size());
+                    body.vertices.push_back(model.mesh.vertices[v]);
+                }
+                t[k] = index[v];
+            }
+            body.faces.push_back(t);
+        }
+    }
+    return bodies;
+}
 
 std::vector<double> face_thickness(const Mesh& body) {
     std::vector<double> out(body.faces.size(), kInf);
@@ -61,26 +100,16 @@ std::vector<double> face_thickness(const Mesh& body) {
 
 ElementThickness element_thickness(const ElementMesh& model) {
     ElementThickness out;
-    const auto n = static_cast<std::size_t>(model.num_elements);
+    const auto n = static_cast<std::size_t>(std::max(model.num_elements, 0));
     out.min_of_element.assign(n, kInf);
     out.at_of_element.assign(n, Vec3::Zero());
     out.of_face.assign(model.mesh.faces.size(), kInf);
+    const std::vector<Mesh> bodies = split_elements(model);  // validates the element ids first
     std::vector<std::vector<int>> faces_of(n);
     for (std::size_t f = 0; f < model.mesh.faces.size(); ++f) faces_of[static_cast<std::size_t>(model.element_of_face[f])].push_back(static_cast<int>(f));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t e = r.begin(); e != r.end(); ++e) {
-            Mesh body;
-            std::map<int, int> index;
-            for (int f : faces_of[e]) {
-                Tri t;
-                for (int k = 0; k < 3; ++k) {
-                    const int v = model.mesh.faces[static_cast<std::size_t>(f)][k];
-                    auto [it, fresh] = index.emplace(v, static_cast<int>(body.vertices.size()));
-                    if (fresh) body.vertices.push_back(model.mesh.vertices[static_cast<std::size_t>(v)]);
-                    t[k] = it->second;
-                }
-                body.faces.push_back(t);
-            }
+            const Mesh& body = bodies[e];
             const std::vector<double> th = face_thickness(body);
             for (std::size_t i = 0; i < th.size(); ++i) {
                 out.of_face[static_cast<std::size_t>(faces_of[e][i])] = th[i];
@@ -110,12 +139,13 @@ Clearances clearances(const ElementMesh& model, double threshold) {
         const Tri& t = m.faces[f];
         return T3(pt(m.vertices[t[0]]), pt(m.vertices[t[1]]), pt(m.vertices[t[2]]));
     };
-    double radius = threshold > 0.0 ? threshold : 1e-3 * diag;
     struct Candidate {
         int f, g;
         double d2;
     };
-    for (;;) {
+    // One exact pass: every pair of faces of different elements closer than `radius` (their boxes
+    // padded by radius / 2 overlap); true when one was found.
+    const auto pass = [&](double radius) -> bool {
         const double pad = 0.5 * radius;
         std::vector<Box> boxes;
         boxes.reserve(m.faces.size());
@@ -163,8 +193,52 @@ Clearances clearances(const ElementMesh& model, double threshold) {
             if (d < threshold || d == 0.0)
                 out.below.push_back({PrintViolation::Kind::Clearance, d, at, key.first, key.second});
         }
-        if (found || radius > 2.0 * diag) break;
-        radius *= 4.0;  // nothing this close: widen (violations, if any, were all in the first round)
+        return found;
+    };
+    const double first = threshold > 0.0 ? threshold : 1e-3 * diag;
+    if (!pass(first)) {
+        // Nothing within the threshold (so no violations). The smallest clearance still has to be
+        // found, without a blind widening that would pair up every face of two big bodies: vertex
+        // distances between the nearest bodies bound it from above, then one exact pass at that
+        // radius finds it.
+        const std::vector<Mesh> bodies = split_elements(model);
+        std::vector<Box3> boxes(bodies.size());
+        for (std::size_t e = 0; e < bodies.size(); ++e) boxes[e] = bounding_box(bodies[e]);
+        std::vector<std::pair<int, int>> near;
+        for (double reach = first; near.empty() && reach < 4.0 * diag; reach *= 4.0) {
+            using BodyBox = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, const Box3*>;
+            std::vector<BodyBox> bb;
+            for (const Box3& b : boxes)
+                if (!b.empty())
+                    bb.emplace_back(CGAL::Bbox_3(b.min.x() - reach, b.min.y() - reach, b.min.z() - reach, b.max.x() + reach, b.max.y() + reach,
+                                                 b.max.z() + reach),
+                                    &b);
+            CGAL::box_self_intersection_d(bb.begin(), bb.end(), [&](const BodyBox& a, const BodyBox& b) {
+                const int i = static_cast<int>(a.handle() - boxes.data()), j = static_cast<int>(b.handle() - boxes.data());
+                near.emplace_back(std::min(i, j), std::max(i, j));
+            });
+        }
+        std::sort(near.begin(), near.end());
+        std::vector<char> needed(bodies.size(), 0);
+        for (const auto& [a, b] : near) needed[static_cast<std::size_t>(a)] = needed[static_cast<std::size_t>(b)] = 1;
+        std::vector<std::unique_ptr<TriangleIndex>> index(bodies.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodies.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t e = r.begin(); e != r.end(); ++e)
+                if (needed[e]) index[e] = std::make_unique<TriangleIndex>(bodies[e]);
+        });
+        std::vector<double> bound(near.size(), kInf);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, near.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                const auto [a, b] = near[i];
+                for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}})
+                    for (const Vec3& v : bodies[static_cast<std::size_t>(from)].vertices)
+                        bound[i] = std::min(bound[i], index[static_cast<std::size_t>(to)]->closest(v).distance);
+            }
+        });
+        const double upper = bound.empty() ? kInf : *std::min_element(bound.begin(), bound.end());
+        // The bound is a true distance (a vertex to a face), so the exact pass at it finds a pair.
+        double radius = std::isfinite(upper) ? upper * (1.0 + 1e-9) + 1e-12 * diag : 4.0 * first;
+        while (!pass(radius) && radius < 4.0 * diag) radius *= 4.0;
     }
     std::stable_sort(out.below.begin(), out.below.end(), [](const PrintViolation& x, const PrintViolation& y) { return x.value_mm < y.value_mm; });
     return out;

@@ -142,8 +142,9 @@ double weighted_percentile(const std::vector<double>& v, const std::vector<doubl
     return v[idx.back()];
 }
 
+/// To millimetres, rounded to float as the files will hold them (so the checks see the file).
 void transform(Mesh& m, const Vec3& origin, double s) {
-    for (Vec3& v : m.vertices) v = (v - origin) * s;
+    for (Vec3& v : m.vertices) v = ((v - origin) * s).cast<float>().cast<double>();
 }
 
 }  // namespace
@@ -210,14 +211,20 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
     rep.seconds_prepare = since(t0);
 
     if (o.mode == PrintMode::Fused) {
-        double closed_area = 0.0;
-        for (const Mesh& m : deco.closed) closed_area += area(m);
-        for (const Mesh& m : basep.closed) closed_area += area(m);
+        double deco_area = 0.0, base_area = 0.0;
+        for (const Mesh& m : deco.closed) deco_area += area(m);
+        for (const Mesh& m : basep.closed) base_area += area(m);
         const Mesh* sheet = basep.open.empty() ? nullptr : &basep.open;
         const double sheet_area = sheet ? area(*sheet) : 0.0;
         const auto estimate = [&](double v) {
-            return print_detail::estimate_band_voxels(closed_area, v, 6.0 + 2.0 * o.attach_mm / v) +
-                   (sheet ? print_detail::estimate_band_voxels(sheet_area, v, 2.0 * ((0.5 * o.base_thickness_mm + o.attach_mm) / v + 4.0)) : 0);
+            // Voxels across each band: 2 x 3 for the elements, 2 x (attach + 4) for the base, the
+            // sheet's thickness + 2 x 4 for the sheet (vdb_solid.cpp); saturating sums.
+            const std::uint64_t parts[3] = {print_detail::estimate_band_voxels(deco_area, v, 6.0),
+                                            print_detail::estimate_band_voxels(base_area, v, 2.0 * (o.attach_mm / v + 4.0)),
+                                            sheet ? print_detail::estimate_band_voxels(sheet_area, v, o.base_thickness_mm / v + 8.0) : 0};
+            std::uint64_t total = 0;
+            for (std::uint64_t p : parts) total = p > UINT64_MAX - total ? UINT64_MAX : total + p;
+            return total;
         };
         const Vec3 size_mm = box.size() * s;
         const auto refuse = [&](double voxel) {
@@ -265,6 +272,9 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
         print_detail::VoxelSolid solid = print_detail::voxel_union(vin, o.reporter);
         rep.voids_filled = solid.voids_filled;
         rep.scraps_dropped = solid.scraps_dropped;
+        if (solid.mesh.faces.empty())
+            throw InvalidInput(name + ": nothing is left of the model at " + mm(voxel) + " voxels: every part is thinner than a voxel; use a smaller "
+                               "--voxel-mm or a larger --size-mm");
         rep.voxels_active = solid.active_voxels;
         rep.seconds_voxelise = solid.seconds_voxelise;
         rep.seconds_mesh = solid.seconds_mesh;
@@ -340,6 +350,8 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
         rep.min_thickness_at -= ob.min;
         rep.min_clearance_at -= ob.min;
     }
+    // The files hold floats: check what they will hold.
+    for (Vec3& v : out.vertices) v = v.cast<float>().cast<double>();
     rep.size_mm = bounding_box(out).size();
     rep.bodies = result.model.num_elements;
     rep.triangles = out.faces.size();

@@ -20,6 +20,10 @@ inline double signed_volume(const Mesh& m) {
     return v / 6.0;
 }
 
+/// The elements of `model` as separate meshes (vertices renumbered; a vertex shared by two
+/// elements is copied into each). \throw InvalidInput element ids or face indices out of range
+std::vector<Mesh> split_elements(const ElementMesh& model);
+
 /// Thickness under every face of a closed, outward-oriented body: the distance from the face's
 /// centroid, along its inward normal, to the first other face the ray meets (CGAL AABB tree).
 /// +infinity for degenerate faces and rays that leave without a hit (an open body).
@@ -53,8 +57,8 @@ Clearances clearances(const ElementMesh& model, double threshold);
 std::uint64_t estimate_band_voxels(double area, double voxel, double band_voxels);
 
 /// The union of closed bodies, closed base bodies grown by `attach` (so elements that nearly
-/// touch the base join it) and (optionally) a sheet `sheet_thickness` + 2 `attach` thick centred
-/// on an open surface, as one closed, outward-oriented triangle mesh (OpenVDB meshToLevelSet,
+/// touch the base join it) and (optionally) a sheet `sheet_thickness` thick centred on an open
+/// surface, as one closed, outward-oriented triangle mesh (OpenVDB meshToLevelSet,
 /// csgUnion, volumeToMesh with `adaptivity`; quads split along the shorter diagonal; points at
 /// the same place welded). Enclosed voids are filled (their inward surfaces dropped).
 struct VoxelSolid {

@@ -37,7 +37,13 @@ public:
     bool wasInterrupted(int /*percent*/ = -1) override {
         if (cancelled_.load()) return true;
         if (!r_.progress) return false;
-        std::lock_guard<std::mutex> lock(mutex_);
+        // OpenVDB polls once per polygon from every worker: ask the Reporter at most every 0.1 s,
+        // from whichever thread gets the lock, and never wait for it.
+        const auto now = Clock::now().time_since_epoch().count();
+        if (now - last_.load() < 100'000'000) return false;
+        std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+        if (!lock.owns_lock()) return false;
+        last_ = now;
         if (!r_.progress(stage_, fraction_)) cancelled_ = true;
         return cancelled_.load();
     }
@@ -51,6 +57,7 @@ private:
     double fraction_;
     std::mutex mutex_;
     std::atomic<bool> cancelled_{false};
+    std::atomic<Clock::rep> last_{0};
 };
 
 void append(const Mesh& m, std::vector<openvdb::Vec3s>& pts, std::vector<openvdb::Vec3I>& tris) {
@@ -126,7 +133,8 @@ VoxelSolid voxel_union(const VoxelInput& in, const Reporter& reporter) {
         }
         if (in.sheet) {
             // |distance| - t/2 is a level set of the sheet; the band must reach across all of it.
-            const double h = 0.5 * in.sheet_thickness + in.attach;
+            // Elements rest on the surface, inside the sheet's upper half: no attach growth needed.
+            const double h = 0.5 * in.sheet_thickness;
             const auto band = static_cast<float>(h / voxel + kHalfWidth + 1.0);
             std::vector<openvdb::Vec3s> pts;
             std::vector<openvdb::Vec3I> tris;
@@ -223,6 +231,20 @@ VoxelSolid voxel_union(const VoxelInput& in, const Reporter& reporter) {
             m.faces.resize(kept);
         }
     }
+    // Keep only the vertices faces use (dropped voids and scraps leave some behind).
+    std::vector<int> renum(m.vertices.size(), -1);
+    std::vector<Vec3> used;
+    used.reserve(m.vertices.size());
+    for (Tri& t : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            int& r = renum[static_cast<std::size_t>(t[k])];
+            if (r < 0) {
+                r = static_cast<int>(used.size());
+                used.push_back(m.vertices[static_cast<std::size_t>(t[k])]);
+            }
+            t[k] = r;
+        }
+    m.vertices = std::move(used);
     out.seconds_mesh = since(t1);
     return out;
 }
