@@ -86,7 +86,7 @@ struct PrintReport {
     std::uint64_t voxels_active = 0;
     int voids_filled = 0;              ///< enclosed air pockets (e.g. under elements) filled
     int scraps_dropped = 0;            ///< closed parts under 1% of a voxel's volume, dropped
-    int loose_bodies = 0;              ///< fused with a base: parts not joined to the largest one
+    int loose_bodies = 0;              ///< fused: parts besides the largest (warned about)
     // Checks (both modes measure; separate mode enforces).
     double min_thickness_mm = 0.0;     ///< thinnest feature found (inward ray from a face)
     Vec3 min_thickness_at = Vec3::Zero();

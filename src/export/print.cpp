@@ -283,13 +283,16 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
         result.model.mesh = std::move(solid.mesh);
         result.model.element_of_face = std::move(comp);
         result.model.num_elements = parts;
-        if (base && parts > 1) {
+        if (parts > 1) {
             std::vector<std::size_t> faces_of(static_cast<std::size_t>(parts), 0);
             for (int c : result.model.element_of_face) ++faces_of[static_cast<std::size_t>(c)];
             rep.loose_bodies = parts - 1;
-            result.warnings.push_back(std::to_string(rep.loose_bodies) + " part(s) of the fused print do not touch the base-joined solid (" +
-                                      std::to_string(*std::max_element(faces_of.begin(), faces_of.end())) +
-                                      " of its triangles are in the largest); a larger --attach-mm joins elements that float above the base");
+            const std::string largest = std::to_string(*std::max_element(faces_of.begin(), faces_of.end())) + " of " +
+                                        std::to_string(result.model.mesh.faces.size()) + " triangles are in the largest";
+            result.warnings.push_back(
+                std::to_string(rep.loose_bodies) + " part(s) of the fused print are loose (" + largest + "); " +
+                (base ? "a larger --attach-mm joins elements that float above the base"
+                      : "if the decoration holds its base (--with-base), give the base with --base instead, so elements attach to it"));
         }
         // Thin features are lost or weak in a fused print, but the solid is still valid: warn.
         rep.min_thickness_mm = kInf;
