@@ -326,8 +326,8 @@ TEST(PrintFused, DerivedVoxelFollowsTheThinnestPrintableFeatureAndTheBudget) {
     o.min_thickness_mm = 0.2;
     PrintResult r = prepare_print(t, nullptr, o, "torus");
     EXPECT_TRUE(r.report.voxel_derived);
-    // The tube is ~1 mm thick: 8 voxels across it.
-    EXPECT_NEAR(r.report.voxel_mm, 1.0 / 8.0 > 0.1 ? 0.1 : 0.125, 0.02);
+    // The tube is ~1 mm thick: 8 voxels across it would be 0.125 mm, capped at 0.1 mm.
+    EXPECT_DOUBLE_EQ(r.report.voxel_mm, 0.1);
     o.unit_mm = 0.5;  // now 0.5 mm thick: 1/16 mm voxels
     r = prepare_print(t, nullptr, o, "torus");
     EXPECT_NEAR(r.report.voxel_mm, 0.5 / 8.0, 0.01);

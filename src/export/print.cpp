@@ -252,7 +252,10 @@ PrintResult prepare_print(const Mesh& decoration, const Mesh* base, const PrintO
             const double feature = std::max(std::isfinite(thin_robust) ? thin_robust : 0.8, o.min_thickness_mm);
             voxel = std::clamp(feature / 8.0, 0.005, 0.1);
             if (estimate(voxel) > o.max_voxels) {
-                const double coarser = voxel * std::sqrt(static_cast<double>(estimate(voxel)) / static_cast<double>(o.max_voxels)) * 1.02;
+                // The band is about area / voxel^2 (the base's and the sheet's also widen as the
+                // voxel shrinks): start from the square-root scaling, then step until it fits.
+                double coarser = voxel * std::sqrt(static_cast<double>(estimate(voxel)) / static_cast<double>(o.max_voxels));
+                while (estimate(coarser) > o.max_voxels) coarser *= 1.05;
                 result.warnings.push_back("voxel size coarsened from " + mm(voxel) + " to " + mm(coarser) + " to stay within " +
                                           std::to_string(o.max_voxels) + " voxels (--max-voxels)");
                 voxel = coarser;
