@@ -34,26 +34,6 @@ std::string at(const Vec3& p) {
     return buf;
 }
 
-/// The faces of `mesh` whose component is `c`, as a mesh of their own (vertices renumbered).
-std::vector<Mesh> split(const Mesh& mesh, const std::vector<int>& comp, int count) {
-    std::vector<Mesh> parts(static_cast<std::size_t>(count));
-    std::vector<int> index(mesh.vertices.size(), -1);
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-        Mesh& p = parts[static_cast<std::size_t>(comp[f])];
-        Tri t;
-        for (int k = 0; k < 3; ++k) {
-            int& i = index[static_cast<std::size_t>(mesh.faces[f][k])];
-            if (i < 0) {
-                i = static_cast<int>(p.vertices.size());
-                p.vertices.push_back(mesh.vertices[static_cast<std::size_t>(mesh.faces[f][k])]);
-            }
-            t[k] = i;
-        }
-        p.faces.push_back(t);
-    }
-    return parts;
-}
-
 double area(const Mesh& m) {
     double a = 0.0;
     for (std::size_t f = 0; f < m.faces.size(); ++f) a += face_area(m, f);
@@ -77,7 +57,7 @@ Parts classify(const Mesh& mesh, const std::string& name, bool open_ok) {
     int count = 0;
     const std::vector<int> comp = connected_components(mesh, &count);
     const MeshAnalysis a = analyse(mesh);
-    std::vector<Mesh> parts = split(mesh, comp, count);
+    std::vector<Mesh> parts = print_detail::split_elements(ElementMesh{mesh, comp, count});
     Parts out;
     for (int c = 0; c < count; ++c) {
         const ElementInfo& e = a.elements[static_cast<std::size_t>(c)];
