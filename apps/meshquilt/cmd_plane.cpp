@@ -5,7 +5,7 @@
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
 #include "meshquilt/quilt.h"
-#include "report_json.h"
+#include "meshquilt/report.h"
 
 #include <chrono>
 #include <cstdio>
@@ -66,7 +66,7 @@ void add_plane_command(CLI::App& root, std::vector<Command>& commands) {
         write_mesh(args->output, r.mesh, wo);
         if (!args->report.empty()) {
             const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            write_file_atomic(args->report, report_to_json(r.report, total).dump(2) + "\n");
+            write_file_atomic(args->report, report_json(r.report, total));
         }
         if (!global_flags().quiet)
             std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces -> " << args->output << '\n';

@@ -7,6 +7,7 @@
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
 #include "meshquilt/print.h"
+#include "meshquilt/report.h"
 
 #include <nlohmann/json.hpp>
 
@@ -18,55 +19,6 @@
 namespace meshquilt::cli {
 
 namespace {
-
-nlohmann::json point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-
-nlohmann::json print_report_json(const PrintReport& r) {
-    nlohmann::json violations = nlohmann::json::array();
-    for (const PrintViolation& v : r.violations) {
-        nlohmann::json j = {{"kind", v.kind == PrintViolation::Kind::Clearance ? "clearance" : "thickness"},
-                            {"value_mm", v.value_mm},
-                            {"location_mm", point(v.location)},
-                            {"body", v.body_a}};
-        if (v.kind == PrintViolation::Kind::Clearance) j["other_body"] = v.body_b;
-        violations.push_back(j);
-    }
-    nlohmann::json j = {{"mode", r.mode == PrintMode::Fused ? "fused" : "separate"},
-                        {"mm_per_unit", r.mm_per_unit},
-                        {"size_mm", point(r.size_mm)},
-                        {"input_bodies", r.input_bodies},
-                        {"bodies", r.bodies},
-                        {"open_base_thickened", r.open_base_thickened != 0},
-                        {"triangles", r.triangles},
-                        {"vertices", r.vertices},
-                        {"volume_mm3", r.volume_mm3},
-                        {"boundary_edges", r.boundary_edges},
-                        {"non_manifold_edges", r.non_manifold_edges},
-                        {"inconsistent_edges", r.inconsistent_edges},
-                        {"inside_out_bodies", r.inside_out_bodies},
-                        {"degenerate_faces", r.degenerate_faces},
-                        {"min_thickness_mm", std::isfinite(r.min_thickness_mm) ? nlohmann::json(r.min_thickness_mm) : nlohmann::json(nullptr)},
-                        {"min_thickness_location_mm", point(r.min_thickness_at)},
-                        {"checks_passed", r.checks_passed},
-                        {"violations", violations},
-                        {"seconds", {{"prepare", r.seconds_prepare}, {"voxelise", r.seconds_voxelise}, {"mesh", r.seconds_mesh}, {"checks", r.seconds_checks}}}};
-    if (r.mode == PrintMode::Separate) {
-        j["min_clearance_mm"] = r.min_clearance_mm >= 0.0 ? nlohmann::json(r.min_clearance_mm) : nlohmann::json(nullptr);
-        j["min_clearance_location_mm"] = point(r.min_clearance_at);
-        j["min_clearance_bodies"] = {r.min_clearance_bodies[0], r.min_clearance_bodies[1]};
-        j["intersecting_pairs"] = r.intersecting_pairs;
-    }
-    if (r.voxel_mm > 0.0) {
-        j["voxel_mm"] = r.voxel_mm;
-        j["voxel_derived"] = r.voxel_derived;
-        j["voxels_estimated"] = r.voxels_estimated;
-        j["voxels_active"] = r.voxels_active;
-        j["voids_filled"] = r.voids_filled;
-        j["scraps_dropped"] = r.scraps_dropped;
-        j["loose_bodies"] = r.loose_bodies;
-    }
-    return j;
-}
 
 }  // namespace
 
@@ -113,7 +65,7 @@ void run_print(const PrintArgs& a, const Mesh& decoration, const Mesh* base, con
     o.reporter = make_cli_reporter();
     const auto write_report = [&](const PrintReport& r) {
         if (report_path.empty()) return;
-        nlohmann::json j = print_report_json(r);
+        nlohmann::json j = nlohmann::json::parse(report_json(r));
         j["seconds"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         write_file_atomic(report_path, j.dump(2) + "\n");
     };

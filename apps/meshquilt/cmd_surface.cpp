@@ -3,12 +3,12 @@
 //           [--symmetry N] [--seed N] [--with-base] [--embed shell|normal] [--report REPORT.json]
 
 #include "cli.h"
+#include "meshquilt/decorate.h"
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
+#include "meshquilt/report.h"
 #include "meshquilt/surface.h"
-#include "report_json.h"
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 
@@ -63,10 +63,14 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
     commands.push_back({app, [a, out_opt, print_opt]() {
         if (out_opt->count() == 0 && print_opt->count() == 0) throw InvalidInput("give an output: -o OUT (mesh) and/or --print OUT.3mf|OUT.stl");
         if (print_opt->count() > 0) check_print_args(a->print);
-        const auto t0 = std::chrono::steady_clock::now();
-        const Mesh base = load_input(a->base, a->repair, false);
-        const Mesh swatch = load_input(a->swatch, a->repair, true);
-        SurfaceQuiltOptions o;
+        // decorate() validates (and with --repair repairs) the inputs, exactly as for the Python module.
+        const Mesh base_in = read_mesh(a->base);
+        const Mesh swatch = read_mesh(a->swatch);
+        DecorateOptions d;
+        d.base_name = a->base;
+        d.swatch_name = a->swatch;
+        d.repair = a->repair;
+        SurfaceQuiltOptions& o = d.surface;
         o.scale = a->scale;
         o.swatch_size = a->swatch_size;
         o.height = a->height;
@@ -76,17 +80,14 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         o.optimise_shell = !a->no_optimise;
         if (!a->field.empty()) o.field = read_guidance_field(a->field);
         o.reporter = make_cli_reporter();
-        SurfaceQuiltResult r;
-        try {
-            r = quilt_surface(base, swatch, o);
-        } catch (const InvalidInput& e) {
-            throw InvalidInput(a->base + " + " + a->swatch + ": " + e.what());
-        }
+        const DecorateResult r = decorate(base_in, swatch, d);
         finish_progress();
+        const Mesh& base = r.base;
+        for (const auto& w : r.repairs) std::cerr << "meshquilt: repaired " << w << '\n';
         for (const auto& w : r.warnings) std::cerr << "meshquilt: warning: " << w << '\n';
-        Mesh out = r.mesh;
+        Mesh out = r.decoration.mesh;
         WriteOptions wo;
-        wo.element_of_face = r.element_of_face;
+        wo.element_of_face = r.decoration.element_of_face;
         if (a->with_base) {
             const int id = r.report.elements;
             const int offset = static_cast<int>(out.vertices.size());
@@ -102,58 +103,12 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                      (a->swatch_size > 0 ? " --swatch-size " + num(a->swatch_size) : " --scale " + num(a->scale)) +
                      (a->height > 0 ? " --height " + num(a->height) : "") + " --seed " + std::to_string(a->seed);
         if (!a->output.empty()) write_mesh(a->output, out, wo);
-        if (!a->report.empty()) {
-            const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            nlohmann::json j = report_to_json(r.report, total);
-            const SurfaceQualityReport& s = r.surface;
-            j["surface"] = {{"base_faces", s.base_faces},
-                            {"base_faces_processed", s.base_faces_processed},
-                            {"coverage", s.base_faces ? static_cast<double>(s.base_faces_processed) / s.base_faces : 0.0},
-                            {"patches_shrunk", s.patches_shrunk},
-                            {"frozen_elements_seen", s.frozen_elements_seen},
-                            {"elements_folded", s.elements_folded},
-                            {"symmetry", s.symmetry},
-                            {"base_units_per_swatch_unit", s.base_scale},
-                            {"region_density_min", s.region_density_min},
-                            {"region_density_max", s.region_density_max},
-                            {"regions", s.regions},
-                            {"base_flipped_components", s.base_flipped_components},
-                            {"base_fold_vertices_smoothed", s.base_fold_vertices_smoothed},
-                            {"vertices_below_base", s.vertices_below_base},
-                            {"elements_below_base", s.elements_below_base},
-                            {"vertices_above_shell", s.vertices_above_shell},
-                            {"embedding", s.embedding == Embedding::Shell ? "shell" : "normal"},
-                            {"shell_height", s.shell_height}};
-            if (s.embedding == Embedding::Shell) {
-                const ShellStatistics& h = s.shell;
-                j["stretch_l2_initial"] = h.stretch_l2_initial;
-                j["stretch_l2_final"] = h.stretch_l2_final;
-                nlohmann::json regions = nlohmann::json::array();
-                for (const ShellLimitedRegion& g : h.limited_regions)
-                    regions.push_back({{"centre", {g.centre.x(), g.centre.y(), g.centre.z()}}, {"vertices", g.vertices}, {"min_height_ratio", g.min_ratio}});
-                j["shell"] = {{"vertices", h.vertices},
-                              {"prisms", h.prisms},
-                              {"tetrahedra", h.tetrahedra},
-                              {"charts", h.charts},
-                              {"free_offset_vertices", h.free_offset_vertices},
-                              {"optimisation_passes", h.optimisation_passes},
-                              {"inverted_tetrahedra", h.inverted_world},
-                              {"inverted_texture_tetrahedra", h.inverted_texture},
-                              {"offset_intersections", h.offset_intersections},
-                              {"height_limited_vertices", h.height_limited_vertices},
-                              {"height_limited_area_fraction", h.limited_area_fraction},
-                              {"min_height_ratio", h.min_height_ratio},
-                              {"height_limited_regions", regions},
-                              {"seconds_build", h.seconds_build},
-                              {"seconds_optimise", h.seconds_optimise}};
-            }
-            write_file_atomic(a->report, j.dump(2) + "\n");
-        }
+        if (!a->report.empty()) write_file_atomic(a->report, report_json(r));
         if (!a->print.output.empty()) {
             // Fused: the decoration and its base make one solid. Separate (print-in-place): the
             // elements alone; the base is the form they were grown on.
             const bool with_base_body = a->print.mode != "separate";
-            run_print(a->print, r.mesh, with_base_body ? &base : nullptr, a->base + " + " + a->swatch, a->print_report);
+            run_print(a->print, r.decoration.mesh, with_base_body ? &base : nullptr, a->base + " + " + a->swatch, a->print_report);
         }
         if (!global_flags().quiet)
             std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces"

@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
+#include "meshquilt/version.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -99,7 +100,7 @@ int main(int argc, char** argv) {
     root.require_subcommand(1);
     root.add_flag("-q,--quiet", global_flags().quiet, "No progress bar");
     root.add_flag("-v,--verbose", global_flags().verbosity, "More log output (repeat for debug)");
-    root.set_version_flag("--version", "meshquilt 0.1.0");
+    root.set_version_flag("--version", std::string("meshquilt ") + version());
     std::vector<Command> commands;
     add_plane_command(root, commands);
     add_inspect_command(root, commands);

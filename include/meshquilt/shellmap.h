@@ -29,6 +29,7 @@
 /// sum_T V_T (|J_T|_F^2 / 3) >= (sum V)(sum V_tex / sum V)^(-2/3), equal only for a similarity.
 
 #include "meshquilt/mesh.h"
+#include "meshquilt/reporter.h"
 
 #include <array>
 #include <cstdint>
@@ -45,6 +46,7 @@ struct ShellOptions {
     int max_passes = 60;              ///< optimisation passes over all free offset vertices at most
     double min_relative_gain = 1e-4;  ///< stop once a pass lowers the objective by less than this
     std::uint64_t seed = 1;           ///< random line-search directions
+    Reporter reporter;                ///< progress ("shell map") and cancellation
 };
 
 /// A region (edge-connected vertices) where the offset height was reduced below H.

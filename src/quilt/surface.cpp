@@ -273,8 +273,8 @@ private:
     void build_shell() {
         if (opt_.embedding != Embedding::Shell) return;
         auto t0 = Clock::now();
-        opt_.reporter.report("shell map", 0.0);
         ShellOptions so;
+        so.reporter = opt_.reporter;
         so.height = surface_.shell_height;
         so.optimise = opt_.optimise_shell;
         so.seed = opt_.seed;

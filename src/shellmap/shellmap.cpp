@@ -596,6 +596,7 @@ void ShellMap::Impl::optimise() {
     };
     std::vector<double> gain_of(T, 0.0);
     for (int pass = 0; pass < opt.max_passes; ++pass) {
+        opt.reporter.report("shell map", 0.4 + 0.6 * pass / opt.max_passes);
         std::fill(gain_of.begin(), gain_of.end(), 0.0);
         for (const auto& group : by_colour)
             tbb::parallel_for(std::size_t{0}, group.size(), [&](std::size_t i) {
@@ -747,9 +748,13 @@ void ShellMap::Impl::build() {
         face_area[f] = meshquilt::face_area(base, f);
         for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(base.faces[f][k])].push_back(static_cast<int>(f));
     }
+    opt.reporter.report("shell map", 0.0);
     offset_directions();
+    opt.reporter.report("shell map", 0.1);
     limit_heights();
+    opt.reporter.report("shell map", 0.3);
     build_atlas();
+    opt.reporter.report("shell map", 0.4);
     stats.stretch_l2_initial = stretch();
     stats.seconds_build = quilt::seconds_since(t0);
     t0 = quilt::Clock::now();

@@ -1,0 +1,384 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// meshquilt._meshquilt: the C++ API (include/meshquilt) for Python. NumPy arrays in and out,
+// options as keyword arguments, the GIL released while computing, a progress callback that can
+// cancel, library errors mapped to Python exceptions (InvalidInputError is a ValueError).
+// python/meshquilt/__init__.py is the public face; docs/library.md documents it.
+
+#include "meshquilt/meshquilt.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace py = pybind11;
+using namespace meshquilt;
+
+namespace {
+
+std::string shape_of(const py::array& a) {
+    std::string s = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+    return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+/// An (N, 3) array of finite floats. \throw InvalidInput naming `what`
+std::vector<Vec3> points_from(const py::handle& obj, const std::string& what) {
+    if (obj.is_none()) throw InvalidInput(what + " is None; give an (N, 3) array of floats");
+    py::array raw = py::array::ensure(obj);
+    if (!raw) throw InvalidInput(what + " is not an array (of " + std::string(py::str(obj.get_type().attr("__name__"))) + ")");
+    const char kind = raw.dtype().kind();
+    if (kind != 'f' && kind != 'i' && kind != 'u')
+        throw InvalidInput(what + " must hold numbers, got dtype " + std::string(py::str(raw.dtype())));
+    if (raw.ndim() != 2 || raw.shape(1) != 3) throw InvalidInput(what + " must have shape (N, 3), got " + shape_of(raw));
+    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(raw);
+    auto r = a.unchecked<2>();
+    std::vector<Vec3> out(static_cast<std::size_t>(r.shape(0)));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+        out[static_cast<std::size_t>(i)] = Vec3(r(i, 0), r(i, 1), r(i, 2));
+        if (!out[static_cast<std::size_t>(i)].allFinite())
+            throw InvalidInput(what + "[" + std::to_string(i) + "] is not finite (" + std::to_string(r(i, 0)) + ", " +
+                               std::to_string(r(i, 1)) + ", " + std::to_string(r(i, 2)) + ")");
+    }
+    return out;
+}
+
+/// An (F, 3) array of integer vertex indices in [0, num_vertices). \throw InvalidInput
+std::vector<Tri> faces_from(const py::handle& obj, std::size_t num_vertices, const std::string& what) {
+    if (obj.is_none()) throw InvalidInput(what + " is None; give an (F, 3) array of integers");
+    py::array raw = py::array::ensure(obj);
+    if (!raw) throw InvalidInput(what + " is not an array");
+    const char kind = raw.dtype().kind();
+    if (kind != 'i' && kind != 'u' && !(raw.size() == 0))
+        throw InvalidInput(what + " must hold integers, got dtype " + std::string(py::str(raw.dtype())));
+    if (raw.ndim() != 2 || raw.shape(1) != 3) throw InvalidInput(what + " must have shape (F, 3), got " + shape_of(raw));
+    auto a = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(raw);
+    auto r = a.unchecked<2>();
+    std::vector<Tri> out(static_cast<std::size_t>(r.shape(0)));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const std::int64_t v = r(i, k);
+            if (v < 0 || static_cast<std::uint64_t>(v) >= num_vertices)
+                throw InvalidInput(what + "[" + std::to_string(i) + "] has vertex index " + std::to_string(v) + " outside [0, " +
+                                   std::to_string(num_vertices) + ")");
+            out[static_cast<std::size_t>(i)][k] = static_cast<int>(v);
+        }
+    return out;
+}
+
+Mesh mesh_from(const py::handle& vertices, const py::handle& faces, const std::string& name) {
+    Mesh m;
+    m.vertices = points_from(vertices, name + "_vertices");
+    m.faces = faces_from(faces, m.vertices.size(), name + "_faces");
+    return m;
+}
+
+py::array_t<double> vertices_array(const std::vector<Vec3>& v) {
+    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+    auto w = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < v.size(); ++i)
+        for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = v[i][k];
+    return a;
+}
+
+py::array_t<std::int32_t> faces_array(const std::vector<Tri>& f) {
+    py::array_t<std::int32_t> a({static_cast<py::ssize_t>(f.size()), py::ssize_t{3}});
+    auto w = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < f.size(); ++i)
+        for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = f[i][k];
+    return a;
+}
+
+py::array_t<std::int32_t> ints_array(const std::vector<int>& v) {
+    py::array_t<std::int32_t> a(std::vector<py::ssize_t>{static_cast<py::ssize_t>(v.size())});
+    auto w = a.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < v.size(); ++i) w(static_cast<py::ssize_t>(i)) = v[i];
+    return a;
+}
+
+py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+/// The Python callbacks of one call, as a Reporter usable from any thread while the GIL is
+/// released. A callback's exception (or Ctrl-C) cancels the computation and is re-raised after it.
+class Callbacks {
+public:
+    Callbacks(py::object progress, py::object log) : progress_(std::move(progress)), log_(std::move(log)) {
+        if (!progress_.is_none() && !PyCallable_Check(progress_.ptr())) throw InvalidInput("progress must be callable or None");
+        if (!log_.is_none() && !PyCallable_Check(log_.ptr())) throw InvalidInput("log must be callable or None");
+    }
+    ~Callbacks() {
+        py::gil_scoped_acquire gil;  // the stored Python objects are released under the GIL
+        error_.reset();
+        progress_ = py::object();
+        log_ = py::object();
+    }
+
+    Reporter reporter() {
+        Reporter r;
+        r.progress = [this](const std::string& stage, double fraction) { return on_progress(stage, fraction); };
+        if (!log_.is_none())
+            r.log = [this](LogLevel level, const std::string& text) { on_log(level, text); };
+        return r;
+    }
+
+    /// Re-raises a callback's exception (call with the GIL held, after the computation).
+    void rethrow_callback_error() {
+        if (error_) {
+            std::unique_ptr<py::error_already_set> e = std::move(error_);
+            e->restore();
+            throw py::error_already_set();
+        }
+    }
+
+private:
+    bool on_progress(const std::string& stage, double fraction) {
+        if (stopped_) return false;
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) return fail();  // Ctrl-C: KeyboardInterrupt after the call
+        if (progress_.is_none()) return true;
+        try {
+            py::object answer = progress_(stage, fraction);
+            if (answer.is_none() || PyObject_IsTrue(answer.ptr()) == 1) return true;
+            stopped_ = true;
+            return false;
+        } catch (py::error_already_set& e) {
+            e.restore();
+            return fail();
+        }
+    }
+
+    void on_log(LogLevel level, const std::string& text) {
+        if (stopped_) return;
+        py::gil_scoped_acquire gil;
+        try {
+            log_(level == LogLevel::Warning ? "warning" : level == LogLevel::Info ? "info" : "debug", text);
+        } catch (py::error_already_set& e) {
+            e.restore();
+            fail();
+        }
+    }
+
+    bool fail() {  // the Python error indicator is set
+        error_ = std::make_unique<py::error_already_set>();
+        stopped_ = true;
+        return false;
+    }
+
+    py::object progress_, log_;
+    std::unique_ptr<py::error_already_set> error_;
+    std::atomic<bool> stopped_{false};
+};
+
+struct Result {
+    py::array_t<double> vertices;
+    py::array_t<std::int32_t> faces;
+    py::array_t<std::int32_t> element_ids;
+    py::array_t<std::int32_t> source_elements;
+    int num_elements = 0;
+    py::object report;
+    std::vector<std::string> warnings;
+    std::vector<std::string> repairs;
+};
+
+std::uint64_t seed_from(const py::int_& seed) {
+    if (py::int_(0) > seed || seed > py::int_(std::numeric_limits<std::uint64_t>::max()))
+        throw InvalidInput("seed must be an integer in [0, 2^64), got " + std::string(py::repr(seed)));
+    return seed.cast<std::uint64_t>();
+}
+
+double positive_or_none(const py::object& value, const std::string& what) {
+    if (value.is_none()) return 0.0;
+    const double v = value.cast<double>();
+    if (!std::isfinite(v) || v <= 0.0) throw InvalidInput(what + " must be a positive finite number or None, got " + std::to_string(v));
+    return v;
+}
+
+/// Per-vertex or per-face guidance vectors; rows of zeros carry no value.
+template <class Value>
+void add_field(std::vector<Value>& out, const py::object& array, std::size_t count, const std::string& what) {
+    if (array.is_none()) return;
+    const std::vector<Vec3> v = points_from(array, what);
+    if (v.size() != count)
+        throw InvalidInput(what + " must have one row per " + (std::is_same_v<Value, GuidanceField::FaceValue> ? "base face" : "base vertex") +
+                           " (" + std::to_string(count) + "), got " + std::to_string(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (v[i].squaredNorm() > 0.0) out.push_back({static_cast<int>(i), v[i]});
+}
+
+Result decorate_py(const py::object& base_vertices, const py::object& base_faces, const py::object& swatch_vertices,
+                   const py::object& swatch_faces, double scale, const py::object& swatch_size, const py::object& height,
+                   const py::int_& seed, int symmetry, const std::string& embed, bool optimise_shell,
+                   const py::object& field_vertices, const py::object& field_faces, bool repair, const py::object& progress,
+                   const py::object& log) {
+    const Mesh base = mesh_from(base_vertices, base_faces, "base");
+    const Mesh swatch = mesh_from(swatch_vertices, swatch_faces, "swatch");
+    DecorateOptions o;
+    o.repair = repair;
+    SurfaceQuiltOptions& s = o.surface;
+    if (!std::isfinite(scale) || scale <= 0.0) throw InvalidInput("scale must be a positive finite number, got " + std::to_string(scale));
+    s.scale = scale;
+    s.swatch_size = positive_or_none(swatch_size, "swatch_size");
+    s.height = positive_or_none(height, "height");
+    s.seed = seed_from(seed);
+    if (symmetry != 0 && symmetry != 1 && symmetry != 2 && symmetry != 4 && symmetry != 6)
+        throw InvalidInput("symmetry must be 0 (detect), 1, 2, 4 or 6, got " + std::to_string(symmetry));
+    s.symmetry = symmetry;
+    if (embed != "shell" && embed != "normal") throw InvalidInput("embed must be 'shell' or 'normal', got '" + embed + "'");
+    s.embedding = embed == "normal" ? Embedding::Normal : Embedding::Shell;
+    s.optimise_shell = optimise_shell;
+    add_field(s.field.vertices, field_vertices, base.vertices.size(), "field_vertices");
+    add_field(s.field.faces, field_faces, base.faces.size(), "field_faces");
+    if ((!field_vertices.is_none() || !field_faces.is_none()) && s.field.empty())
+        throw InvalidInput("the guidance field has no non-zero vector; pass None for the automatic field");
+
+    Callbacks callbacks(progress, log);
+    s.reporter = callbacks.reporter();
+    std::optional<DecorateResult> r;
+    try {
+        py::gil_scoped_release release;
+        r = decorate(base, swatch, o);
+    } catch (const Cancelled&) {
+        callbacks.rethrow_callback_error();
+        throw;
+    }
+    callbacks.rethrow_callback_error();
+    Result out;
+    out.vertices = vertices_array(r->decoration.mesh.vertices);
+    out.faces = faces_array(r->decoration.mesh.faces);
+    out.element_ids = ints_array(r->decoration.element_of_face);
+    out.source_elements = ints_array(r->source_element);
+    out.num_elements = r->decoration.num_elements;
+    out.report = json_loads(report_json(*r));
+    out.warnings = r->warnings;
+    out.repairs = r->repairs;
+    return out;
+}
+
+Result quilt_plane_py(const py::object& swatch_vertices, const py::object& swatch_faces, double width, double height,
+                      const py::int_& seed, double cell_size, bool repair, const py::object& progress, const py::object& log) {
+    Mesh swatch = mesh_from(swatch_vertices, swatch_faces, "swatch");
+    ValidationOptions vo;
+    vo.repair = repair;
+    vo.require_thin_axis = true;
+    ValidationResult v = validate(swatch, "swatch", vo);
+    PlanarQuiltOptions o;
+    o.width = width;
+    o.height = height;
+    o.cell_size = cell_size;
+    o.seed = seed_from(seed);
+    Callbacks callbacks(progress, log);
+    o.reporter = callbacks.reporter();
+    std::optional<QuiltResult> r;
+    double seconds = 0.0;
+    try {
+        py::gil_scoped_release release;
+        const auto t0 = std::chrono::steady_clock::now();
+        r = quilt_plane(v.mesh, o);
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    } catch (const Cancelled&) {
+        callbacks.rethrow_callback_error();
+        throw;
+    }
+    callbacks.rethrow_callback_error();
+    Result out;
+    out.vertices = vertices_array(r->mesh.vertices);
+    out.faces = faces_array(r->mesh.faces);
+    out.element_ids = ints_array(r->element_of_face);
+    out.source_elements = ints_array(r->source_element);
+    out.num_elements = r->report.elements;
+    out.report = json_loads(report_json(r->report, seconds));
+    out.warnings = v.warnings;
+    out.warnings.insert(out.warnings.end(), r->warnings.begin(), r->warnings.end());
+    out.repairs = v.repairs;
+    return out;
+}
+
+py::tuple read_mesh_py(const std::string& path) {
+    Mesh m;
+    {
+        py::gil_scoped_release release;
+        m = read_mesh(path);
+    }
+    return py::make_tuple(vertices_array(m.vertices), faces_array(m.faces));
+}
+
+void write_mesh_py(const std::string& path, const py::object& vertices, const py::object& faces, const py::object& element_ids,
+                   const std::string& comment) {
+    const Mesh m = mesh_from(vertices, faces, "mesh");
+    WriteOptions wo;
+    wo.comment = comment;
+    if (!element_ids.is_none()) {
+        auto ids = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(element_ids);
+        if (!ids || ids.ndim() != 1 || static_cast<std::size_t>(ids.shape(0)) != m.faces.size())
+            throw InvalidInput("element_ids must be a 1-D integer array with one entry per face (" + std::to_string(m.faces.size()) + ")");
+        auto r = ids.unchecked<1>();
+        for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+            if (r(i) < 0 || r(i) > std::numeric_limits<int>::max())
+                throw InvalidInput("element_ids[" + std::to_string(i) + "] = " + std::to_string(r(i)) + " is negative or too large");
+            wo.element_of_face.push_back(static_cast<int>(r(i)));
+        }
+    }
+    py::gil_scoped_release release;
+    write_mesh(path, m, wo);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_meshquilt, m) {
+    m.doc() = "meshquilt: cover triangle meshes with geometric textures grown from a swatch (mesh quilting).";
+    m.attr("__version__") = meshquilt::version();
+
+    // Most derived last: pybind11 tries the translators in reverse order of registration.
+    static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
+    static py::exception<InvalidInput> invalid(m, "InvalidInputError", PyExc_ValueError);
+    static py::exception<IoError> io(m, "MeshIOError", PyExc_OSError);
+    static py::exception<Cancelled> cancelled(m, "CancelledError", error.ptr());
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Cancelled& e) {
+            cancelled(e.what());
+        } catch (const IoError& e) {
+            io(e.what());
+        } catch (const InvalidInput& e) {
+            invalid(e.what());
+        } catch (const Error& e) {
+            error(e.what());
+        }
+    });
+
+    py::class_<Result>(m, "Result", "The output of decorate() or quilt_plane().")
+        .def_readonly("vertices", &Result::vertices, "(N, 3) float64 vertex positions")
+        .def_readonly("faces", &Result::faces, "(F, 3) int32 vertex indices, counter-clockwise seen from outside")
+        .def_readonly("element_ids", &Result::element_ids, "(F,) int32 element id per face, in [0, num_elements)")
+        .def_readonly("source_elements", &Result::source_elements, "(num_elements,) int32: the swatch element each grew from")
+        .def_readonly("num_elements", &Result::num_elements)
+        .def_readonly("report", &Result::report, "the quality report (the CLI's --report JSON as a dict)")
+        .def_readonly("warnings", &Result::warnings)
+        .def_readonly("repairs", &Result::repairs, "repairs made to the inputs (repair=True only)")
+        .def("__repr__", [](const Result& r) {
+            return "<meshquilt.Result " + std::to_string(r.num_elements) + " elements, " + std::to_string(r.faces.shape(0)) + " faces>";
+        });
+
+    m.def("decorate", &decorate_py, py::arg("base_vertices"), py::arg("base_faces"), py::arg("swatch_vertices"),
+          py::arg("swatch_faces"), py::kw_only(), py::arg("scale") = 0.08, py::arg("swatch_size") = py::none(),
+          py::arg("height") = py::none(), py::arg("seed") = 1, py::arg("symmetry") = 0, py::arg("embed") = "shell",
+          py::arg("optimise_shell") = true, py::arg("field_vertices") = py::none(), py::arg("field_faces") = py::none(),
+          py::arg("repair") = false, py::arg("progress") = py::none(), py::arg("log") = py::none());
+    m.def("quilt_plane", &quilt_plane_py, py::arg("swatch_vertices"), py::arg("swatch_faces"), py::arg("width"),
+          py::arg("height"), py::kw_only(), py::arg("seed") = 1, py::arg("cell_size") = 0.0, py::arg("repair") = false,
+          py::arg("progress") = py::none(), py::arg("log") = py::none());
+    m.def("read_mesh", &read_mesh_py, py::arg("path"));
+    m.def("write_mesh", &write_mesh_py, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
+          py::arg("element_ids") = py::none(), py::arg("comment") = "");
+}
