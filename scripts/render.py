@@ -197,6 +197,37 @@ def place_camera(scene, corners, centre, azimuth, elevation, zoom):
     cam.location = centre + direction * (fit_distance() / zoom)
 
 
+def setup_render(scene, corners, centre, args):
+    """Ground, lights, camera and Cycles settings for a model whose bounding box has these corners;
+    `args` carries size, samples, azimuth, elevation, zoom and output (JPEG or PNG)."""
+    lo = Vector([min(c[i] for c in corners) for i in range(3)])
+    hi = Vector([max(c[i] for c in corners) for i in range(3)])
+    add_ground(centre, float((hi - lo).length), float(lo.z))
+    add_lights(scene)
+
+    scene.render.resolution_x, scene.render.resolution_y = args.size
+    scene.render.resolution_percentage = 100
+    place_camera(scene, corners, centre, args.azimuth, args.elevation, args.zoom)
+
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = args.samples
+    scene.cycles.use_denoising = True
+    scene.view_settings.view_transform = "AgX"
+    scene.view_settings.look = "AgX - Medium High Contrast"
+
+    settings = scene.render.image_settings
+    if args.output.lower().endswith((".jpg", ".jpeg")):
+        settings.file_format = "JPEG"
+        settings.quality = 88
+    else:
+        settings.file_format = "PNG"
+        settings.color_mode = "RGB"
+        settings.color_depth = "8"
+        settings.compression = 100
+    scene.render.filepath = args.output
+
+
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -224,30 +255,7 @@ def main():
     lo, hi = used.min(axis=0), used.max(axis=0)
     centre = Vector(((lo + hi) / 2).tolist())
     corners = [Vector((x, y, z)) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-    add_ground(centre, float(np.linalg.norm(hi - lo)), float(lo[2]))
-    add_lights(scene)
-
-    scene.render.resolution_x, scene.render.resolution_y = args.size
-    scene.render.resolution_percentage = 100
-    place_camera(scene, corners, centre, args.azimuth, args.elevation, args.zoom)
-
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = args.samples
-    scene.cycles.use_denoising = True
-    scene.view_settings.view_transform = "AgX"
-    scene.view_settings.look = "AgX - Medium High Contrast"
-
-    settings = scene.render.image_settings
-    if args.output.lower().endswith((".jpg", ".jpeg")):
-        settings.file_format = "JPEG"
-        settings.quality = 88
-    else:
-        settings.file_format = "PNG"
-        settings.color_mode = "RGB"
-        settings.color_depth = "8"
-        settings.compression = 100
-    scene.render.filepath = args.output
+    setup_render(scene, corners, centre, args)
     bpy.ops.render.render(write_still=True)
     print(f"render.py: {len(tris)} faces, {count} elements -> {args.output}")
 

@@ -490,6 +490,12 @@ TEST(Validate, ThinAxisRequired) {
     ValidationOptions o;
     o.require_thin_axis = true;
     EXPECT_NO_THROW(validate(slab, "m.obj", o));
+    // A flat swatch (a square in the plane y = 0) has a thin axis but nothing to grow.
+    Mesh flat;
+    flat.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 1), Vec3(0, 0, 1)};
+    flat.faces = {Tri(0, 1, 2), Tri(0, 2, 3)};
+    EXPECT_TRUE(rejects(flat, {"m.obj: flat: its thin axis (y) has no thickness"}, false, true));
+    EXPECT_NO_THROW(validate(flat, "m.obj"));  // a flat base is fine
 }
 
 TEST(Validate, UnreferencedVerticesAreKeptOrDropped) {

@@ -29,11 +29,14 @@ from ._meshquilt import (  # noqa: F401
     Error,
     InvalidInputError,
     MeshIOError,
+    PrintCheckError,
     Result,
     __version__,
     decorate,
+    prepare_print,
     quilt_plane,
     read_mesh,
+    validate,
     write_mesh,
 )
 
@@ -42,10 +45,13 @@ __all__ = [
     "Error",
     "InvalidInputError",
     "MeshIOError",
+    "PrintCheckError",
     "Result",
     "__version__",
     "decorate",
+    "prepare_print",
     "quilt_plane",
     "read_mesh",
+    "validate",
     "write_mesh",
 ]

@@ -179,6 +179,21 @@ private:
     std::atomic<bool> stopped_{false};
 };
 
+/// Runs `work` with the GIL released; a callback's exception (which cancelled it) is re-raised.
+template <class Work>
+auto without_gil(Callbacks& callbacks, Work&& work) {
+    std::optional<decltype(work())> r;
+    try {
+        py::gil_scoped_release release;
+        r.emplace(work());
+    } catch (const Cancelled&) {
+        callbacks.rethrow_callback_error();
+        throw;
+    }
+    callbacks.rethrow_callback_error();
+    return std::move(*r);
+}
+
 struct Result {
     py::array_t<double> vertices;
     py::array_t<std::int32_t> faces;
@@ -189,6 +204,20 @@ struct Result {
     std::vector<std::string> warnings;
     std::vector<std::string> repairs;
 };
+
+Result make_result(const Mesh& mesh, const std::vector<int>& element_of_face, const std::vector<int>& source_elements,
+                   int num_elements, const std::string& report, std::vector<std::string> warnings, std::vector<std::string> repairs) {
+    Result out;
+    out.vertices = vertices_array(mesh.vertices);
+    out.faces = faces_array(mesh.faces);
+    out.element_ids = ints_array(element_of_face);
+    out.source_elements = ints_array(source_elements);
+    out.num_elements = num_elements;
+    out.report = json_loads(report);
+    out.warnings = std::move(warnings);
+    out.repairs = std::move(repairs);
+    return out;
+}
 
 std::uint64_t seed_from(const py::int_& seed) {
     if (py::int_(0) > seed || seed > py::int_(std::numeric_limits<std::uint64_t>::max()))
@@ -243,25 +272,9 @@ Result decorate_py(const py::object& base_vertices, const py::object& base_faces
 
     Callbacks callbacks(progress, log);
     s.reporter = callbacks.reporter();
-    std::optional<DecorateResult> r;
-    try {
-        py::gil_scoped_release release;
-        r = decorate(base, swatch, o);
-    } catch (const Cancelled&) {
-        callbacks.rethrow_callback_error();
-        throw;
-    }
-    callbacks.rethrow_callback_error();
-    Result out;
-    out.vertices = vertices_array(r->decoration.mesh.vertices);
-    out.faces = faces_array(r->decoration.mesh.faces);
-    out.element_ids = ints_array(r->decoration.element_of_face);
-    out.source_elements = ints_array(r->source_element);
-    out.num_elements = r->decoration.num_elements;
-    out.report = json_loads(report_json(*r));
-    out.warnings = r->warnings;
-    out.repairs = r->repairs;
-    return out;
+    const DecorateResult r = without_gil(callbacks, [&] { return decorate(base, swatch, o); });
+    return make_result(r.decoration.mesh, r.decoration.element_of_face, r.source_element, r.decoration.num_elements,
+                       report_json(r), r.warnings, r.repairs);
 }
 
 Result quilt_plane_py(const py::object& swatch_vertices, const py::object& swatch_faces, double width, double height,
@@ -278,29 +291,50 @@ Result quilt_plane_py(const py::object& swatch_vertices, const py::object& swatc
     o.seed = seed_from(seed);
     Callbacks callbacks(progress, log);
     o.reporter = callbacks.reporter();
-    std::optional<QuiltResult> r;
-    double seconds = 0.0;
-    try {
-        py::gil_scoped_release release;
-        const auto t0 = std::chrono::steady_clock::now();
-        r = quilt_plane(v.mesh, o);
-        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    } catch (const Cancelled&) {
-        callbacks.rethrow_callback_error();
-        throw;
-    }
-    callbacks.rethrow_callback_error();
-    Result out;
-    out.vertices = vertices_array(r->mesh.vertices);
-    out.faces = faces_array(r->mesh.faces);
-    out.element_ids = ints_array(r->element_of_face);
-    out.source_elements = ints_array(r->source_element);
-    out.num_elements = r->report.elements;
-    out.report = json_loads(report_json(r->report, seconds));
-    out.warnings = v.warnings;
-    out.warnings.insert(out.warnings.end(), r->warnings.begin(), r->warnings.end());
-    out.repairs = v.repairs;
-    return out;
+    const auto t0 = std::chrono::steady_clock::now();
+    const QuiltResult r = without_gil(callbacks, [&] { return quilt_plane(v.mesh, o); });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<std::string> warnings = v.warnings;
+    warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+    return make_result(r.mesh, r.element_of_face, r.source_element, r.report.elements, report_json(r.report, seconds),
+                       std::move(warnings), v.repairs);
+}
+
+Result prepare_print_py(const py::object& vertices, const py::object& faces, const py::object& base_vertices,
+                        const py::object& base_faces, const std::string& mode, double size_mm, double unit_mm,
+                        double min_thickness_mm, double min_clearance_mm, double voxel_mm, double adaptivity, double attach_mm,
+                        double base_thickness_mm, std::uint64_t max_voxels, bool force, const py::object& progress,
+                        const py::object& log) {
+    const Mesh decoration = mesh_from(vertices, faces, "decoration");
+    std::optional<Mesh> base;
+    if (base_vertices.is_none() != base_faces.is_none()) throw InvalidInput("give both base_vertices and base_faces, or neither");
+    if (!base_vertices.is_none()) base = mesh_from(base_vertices, base_faces, "base");
+    if (mode != "fused" && mode != "separate") throw InvalidInput("mode must be 'fused' or 'separate', got '" + mode + "'");
+    PrintOptions o;
+    o.mode = mode == "fused" ? PrintMode::Fused : PrintMode::Separate;
+    o.size_mm = size_mm;
+    o.unit_mm = unit_mm;
+    o.min_thickness_mm = min_thickness_mm;
+    o.min_clearance_mm = min_clearance_mm;
+    o.voxel_mm = voxel_mm;
+    o.adaptivity = adaptivity;
+    o.attach_mm = attach_mm;
+    o.base_thickness_mm = base_thickness_mm;
+    o.max_voxels = max_voxels;
+    o.force = force;
+    Callbacks callbacks(progress, log);
+    o.reporter = callbacks.reporter();
+    const PrintResult r = without_gil(callbacks, [&] { return prepare_print(decoration, base ? &*base : nullptr, o, "decoration"); });
+    return make_result(r.model.mesh, r.model.element_of_face, {}, r.model.num_elements, report_json(r.report), r.warnings, {});
+}
+
+py::tuple validate_py(const py::object& vertices, const py::object& faces, const std::string& name, bool swatch, bool repair) {
+    const Mesh m = mesh_from(vertices, faces, name);
+    ValidationOptions vo;
+    vo.repair = repair;
+    vo.require_thin_axis = swatch;
+    const ValidationResult v = validate(m, name, vo);
+    return py::make_tuple(vertices_array(v.mesh.vertices), faces_array(v.mesh.faces), v.repairs, v.warnings);
 }
 
 py::tuple read_mesh_py(const std::string& path) {
@@ -313,10 +347,11 @@ py::tuple read_mesh_py(const std::string& path) {
 }
 
 void write_mesh_py(const std::string& path, const py::object& vertices, const py::object& faces, const py::object& element_ids,
-                   const std::string& comment) {
+                   const std::string& comment, bool assembly_3mf) {
     const Mesh m = mesh_from(vertices, faces, "mesh");
     WriteOptions wo;
     wo.comment = comment;
+    wo.assembly_3mf = assembly_3mf;
     if (!element_ids.is_none()) {
         auto ids = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(element_ids);
         if (!ids || ids.ndim() != 1 || static_cast<std::size_t>(ids.shape(0)) != m.faces.size())
@@ -343,9 +378,15 @@ PYBIND11_MODULE(_meshquilt, m) {
     static py::exception<InvalidInput> invalid(m, "InvalidInputError", PyExc_ValueError);
     static py::exception<IoError> io(m, "MeshIOError", PyExc_OSError);
     static py::exception<Cancelled> cancelled(m, "CancelledError", error.ptr());
+    static py::exception<PrintCheckFailed> print_failed(m, "PrintCheckError", invalid.ptr());
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const PrintCheckFailed& e) {
+            // The exception carries the print report (with the violations) as `.report`.
+            py::object instance = py::reinterpret_borrow<py::object>(print_failed.ptr())(e.what());
+            instance.attr("report") = json_loads(report_json(e.report));
+            PyErr_SetObject(print_failed.ptr(), instance.ptr());
         } catch (const Cancelled& e) {
             cancelled(e.what());
         } catch (const IoError& e) {
@@ -370,15 +411,23 @@ PYBIND11_MODULE(_meshquilt, m) {
             return "<meshquilt.Result " + std::to_string(r.num_elements) + " elements, " + std::to_string(r.faces.shape(0)) + " faces>";
         });
 
-    m.def("decorate", &decorate_py, py::arg("base_vertices"), py::arg("base_faces"), py::arg("swatch_vertices"),
+    m.def("decorate", &decorate_py, "Cover a base mesh with a geometric texture grown from a swatch (the main job). Returns a Result.", py::arg("base_vertices"), py::arg("base_faces"), py::arg("swatch_vertices"),
           py::arg("swatch_faces"), py::kw_only(), py::arg("scale") = 0.08, py::arg("swatch_size") = py::none(),
           py::arg("height") = py::none(), py::arg("seed") = 1, py::arg("symmetry") = 0, py::arg("embed") = "shell",
           py::arg("optimise_shell") = true, py::arg("field_vertices") = py::none(), py::arg("field_faces") = py::none(),
           py::arg("repair") = false, py::arg("progress") = py::none(), py::arg("log") = py::none());
-    m.def("quilt_plane", &quilt_plane_py, py::arg("swatch_vertices"), py::arg("swatch_faces"), py::arg("width"),
+    m.def("quilt_plane", &quilt_plane_py, "Planar quilting: a width x height footprint (swatch units) grown from the swatch. Returns a Result.", py::arg("swatch_vertices"), py::arg("swatch_faces"), py::arg("width"),
           py::arg("height"), py::kw_only(), py::arg("seed") = 1, py::arg("cell_size") = 0.0, py::arg("repair") = false,
           py::arg("progress") = py::none(), py::arg("log") = py::none());
-    m.def("read_mesh", &read_mesh_py, py::arg("path"));
-    m.def("write_mesh", &write_mesh_py, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
-          py::arg("element_ids") = py::none(), py::arg("comment") = "");
+    m.def("prepare_print", &prepare_print_py, "A printable model in mm (fused with the base, or separate bodies), checked. Returns a Result whose report is the print report.", py::arg("vertices"), py::arg("faces"), py::arg("base_vertices") = py::none(),
+          py::arg("base_faces") = py::none(), py::kw_only(), py::arg("mode") = "fused", py::arg("size_mm") = 0.0,
+          py::arg("unit_mm") = 0.0, py::arg("min_thickness_mm") = 0.8, py::arg("min_clearance_mm") = 0.3,
+          py::arg("voxel_mm") = 0.0, py::arg("adaptivity") = 0.2, py::arg("attach_mm") = 0.2,
+          py::arg("base_thickness_mm") = 2.0, py::arg("max_voxels") = std::uint64_t{200'000'000}, py::arg("force") = false,
+          py::arg("progress") = py::none(), py::arg("log") = py::none());
+    m.def("validate", &validate_py, "Checks a mesh as decorate() does; returns (vertices, faces, repairs, warnings) or raises InvalidInputError.", py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("name") = "mesh",
+          py::arg("swatch") = false, py::arg("repair") = false);
+    m.def("read_mesh", &read_mesh_py, "Reads OBJ, PLY, STL, OFF or 3MF; returns (vertices (N, 3) float64, faces (F, 3) int32).", py::arg("path"));
+    m.def("write_mesh", &write_mesh_py, "Writes OBJ (one group per element), PLY, STL or 3MF by extension, atomically.", py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
+          py::arg("element_ids") = py::none(), py::arg("comment") = "", py::arg("assembly_3mf") = false);
 }

@@ -351,3 +351,72 @@ def test_same_result_as_the_cli(tmp_path, base, swatch, options):
     for key in ("faces", "vertices", "elements", "elements_closed", "patches", "output_density"):
         assert cli_report[key] == r.report[key], key
     assert cli_report["surface"] == r.report["surface"]
+
+
+# ---- print export -------------------------------------------------------------------------------
+
+def test_prepare_print_fused_is_watertight_and_round_trips_through_3mf(tmp_path, base, decorated):
+    r = meshquilt.prepare_print(decorated.vertices, decorated.faces, *base, size_mm=40, voxel_mm=0.25)
+    rep = r.report
+    assert rep["mode"] == "fused" and rep["bodies"] == r.num_elements >= 1
+    assert rep["boundary_edges"] == 0 and rep["non_manifold_edges"] == 0 and rep["inside_out_bodies"] == 0
+    extent = r.vertices.max(axis=0) - r.vertices.min(axis=0)
+    np.testing.assert_allclose(extent, rep["size_mm"], rtol=1e-5)
+    assert extent.max() == pytest.approx(40, abs=0.5)  # the input scaled to 40 mm, remeshed at 0.25 mm
+    path = str(tmp_path / "fused.3mf")
+    meshquilt.write_mesh(path, r.vertices, r.faces, element_ids=r.element_ids)
+    v, f = meshquilt.read_mesh(path)
+    assert f.shape == r.faces.shape
+    np.testing.assert_allclose(v, r.vertices, atol=1e-4)  # 3MF stores floats
+
+
+def test_prepare_print_separate_checks_clearance(rivets):
+    plane = meshquilt.quilt_plane(*rivets, 12, 12, seed=2)
+    r = meshquilt.prepare_print(plane.vertices, plane.faces, mode="separate", size_mm=120, min_clearance_mm=0.1,
+                                min_thickness_mm=0.3)
+    assert r.num_elements == plane.num_elements
+    assert r.report["checks_passed"] and r.report["min_clearance_mm"] > 0.1
+    with pytest.raises(meshquilt.PrintCheckError) as failed:
+        meshquilt.prepare_print(plane.vertices, plane.faces, mode="separate", size_mm=120, min_clearance_mm=40,
+                                min_thickness_mm=0.3)
+    assert isinstance(failed.value, ValueError)
+    report = failed.value.report
+    assert not report["checks_passed"] and report["violations"][0]["kind"] == "clearance"
+    assert "clearance" in str(failed.value)
+    forced = meshquilt.prepare_print(plane.vertices, plane.faces, mode="separate", size_mm=120, min_clearance_mm=40,
+                                     min_thickness_mm=0.3, force=True)
+    assert not forced.report["checks_passed"] and forced.num_elements == plane.num_elements
+
+
+@pytest.mark.parametrize("options, message", [
+    (dict(), "print size"),
+    (dict(size_mm=40, mode="glued"), "mode must be 'fused' or 'separate'"),
+    (dict(size_mm=-3), "size"),
+])
+def test_prepare_print_bad_options(decorated, options, message):
+    with pytest.raises(ValueError, match=message):
+        meshquilt.prepare_print(decorated.vertices, decorated.faces, **options)
+
+
+def test_validate_checks_and_repairs_like_decorate(base, rivets):
+    bv, bf = base
+    v, f, repairs, warnings = meshquilt.validate(bv, bf, name="eight.obj")
+    np.testing.assert_array_equal(v, bv)
+    np.testing.assert_array_equal(f, bf)
+    assert repairs == [] and warnings == []
+    with pytest.raises(ValueError, match="eight.obj: .*degenerate"):
+        meshquilt.validate(bv, np.vstack([bf, [[1, 1, 2]]]), name="eight.obj")
+    v, f, repairs, _ = meshquilt.validate(bv, np.vstack([bf, [[1, 1, 2]]]), name="eight.obj", repair=True)
+    assert len(f) == len(bf) and repairs
+    with pytest.raises(ValueError, match="thin axis"):
+        meshquilt.validate(*cube(), swatch=True)
+    meshquilt.validate(*rivets, swatch=True)
+
+
+def test_flat_swatch_is_named_as_such(base):
+    # three separate unit squares in the plane z = 0: a valid mesh, but nothing to grow
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    flat_v = np.vstack([square + [2.0 * i, 0, 0] for i in range(3)])
+    flat_f = np.vstack([np.array([[0, 1, 2], [0, 2, 3]]) + 4 * i for i in range(3)])
+    with pytest.raises(ValueError, match="swatch: flat: its thin axis \\(z\\) has no thickness"):
+        meshquilt.decorate(*base, flat_v, flat_f)

@@ -176,7 +176,12 @@ ValidationResult validate(const Mesh& input, const std::string& name, const Vali
 
     if (options.require_thin_axis) {
         const Box3 box = bounding_box(mesh);
-        if (!thin_axis_of(box).is_thin) error(thin_axis_phrase(box));
+        const ThinAxis thin = thin_axis_of(box);
+        if (!thin.is_thin) error(thin_axis_phrase(box));
+        // A flat swatch (all in one plane) has a thin axis but no thickness: nothing to grow.
+        if (!(thin.thickness > 1e-9 * box.size().maxCoeff()))
+            error("flat: its thin axis (" + std::string(1, "xyz"[thin.axis]) +
+                  ") has no thickness; a swatch's elements must be solids in a slab");
     }
 
     if (options.repair) {
