@@ -12,9 +12,11 @@ enum class LogLevel { Debug, Info, Warning };
 
 struct Reporter {
     /// Called with a stage name and its completed fraction in [0, 1]. Return false to cancel:
-    /// the running call then throws `Cancelled`. May be empty.
+    /// the running call then throws `Cancelled`. May be empty. Mostly called on the calling
+    /// thread, but while a print is voxelised OpenVDB calls it from its worker threads (one at a
+    /// time): it must be thread-safe and must not wait for the calling thread.
     std::function<bool(const std::string& stage, double fraction)> progress;
-    /// Receives log messages. May be empty.
+    /// Receives log messages (on the calling thread). May be empty.
     std::function<void(LogLevel level, const std::string& text)> log;
 
     /// Forwards to `progress`; throws Cancelled when it returns false.

@@ -74,12 +74,13 @@ _import_error = None  # why it could not be imported (str)
 
 
 def install_hint():
-    """How to make ``import meshquilt`` work inside this Blender (one paragraph)."""
+    """How to make ``import meshquilt`` work inside this Blender (one paragraph). The fix comes
+    first: Blender cuts long poll messages."""
     return (
-        f"meshquilt's Python module is not importable in Blender's Python ({_import_error}). "
-        f"Install it with Blender's interpreter: \"{sys.executable} -m pip install /path/to/meshquilt\" "
-        "(the meshquilt source tree), or set the folder that holds a built 'meshquilt' package "
-        "(e.g. <build>/python) in the add-on's preferences, then restart Blender or re-enable the add-on"
+        f"meshquilt's Python module is missing: pip install it into Blender's Python, "
+        f"\"{sys.executable} -m pip install /path/to/meshquilt\" (the meshquilt source tree), or set the "
+        "folder that holds a built 'meshquilt' package (e.g. <build>/python) in the add-on's preferences, "
+        f"then restart Blender or re-enable the add-on ({_import_error})"
     )
 
 

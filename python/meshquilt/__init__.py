@@ -16,12 +16,15 @@ fraction)`` is called from time to time (from worker threads, holding the GIL); 
 cancels the call, which then raises :class:`CancelledError`. The GIL is released while meshquilt
 computes, so other Python threads keep running.
 
-Errors: bad meshes or options raise :class:`InvalidInputError` (a ``ValueError``), unreadable files
-:class:`MeshIOError` (an ``OSError``), cancellation :class:`CancelledError`, other failures
-:class:`Error` (a ``RuntimeError``). An exception raised by a callback cancels the call and is
+Errors: bad meshes or options raise :class:`InvalidInputError` (a ``ValueError``), a failed print
+check :class:`PrintCheckError` (an ``InvalidInputError`` with the print report as ``.report``),
+unreadable files :class:`MeshIOError` (an ``OSError``), cancellation :class:`CancelledError`, other
+failures :class:`Error` (a ``RuntimeError``). An exception raised by a callback cancels the call and is
 re-raised as it was.
 
-See docs/library.md for every option.
+Also: ``quilt_plane`` (planar quilting), ``prepare_print`` (printable solids in mm), ``validate``,
+``read_mesh`` and ``write_mesh`` (file names may be str, bytes or os.PathLike). See
+docs/library.md for every option.
 """
 
 from ._meshquilt import (  # noqa: F401

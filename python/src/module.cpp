@@ -16,8 +16,10 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -108,13 +110,24 @@ py::array_t<std::int32_t> ints_array(const std::vector<int>& v) {
 
 py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
+/// Text from the library as a Python str (invalid UTF-8, e.g. from a file name, is replaced).
+py::str utf8(const std::string& text) {
+    return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace"));
+}
+
 /// The Python callbacks of one call, as a Reporter usable from any thread while the GIL is
 /// released. A callback's exception (or Ctrl-C) cancels the computation and is re-raised after it.
+/// Python is entered at most every 50 ms (and at every new stage and every stage's end), so a busy
+/// Python thread cannot stall the computation on the GIL; without a progress callback, only the
+/// main thread enters it, to notice Ctrl-C.
 class Callbacks {
 public:
-    Callbacks(py::object progress, py::object log) : progress_(std::move(progress)), log_(std::move(log)) {
+    Callbacks(py::object progress, py::object log)
+        : progress_(std::move(progress)), log_(std::move(log)), caller_(std::this_thread::get_id()) {
         if (!progress_.is_none() && !PyCallable_Check(progress_.ptr())) throw InvalidInput("progress must be callable or None");
         if (!log_.is_none() && !PyCallable_Check(log_.ptr())) throw InvalidInput("log must be callable or None");
+        const py::module_ threading = py::module_::import("threading");
+        caller_is_main_ = threading.attr("current_thread")().is(threading.attr("main_thread")());
     }
     ~Callbacks() {
         py::gil_scoped_acquire gil;  // the stored Python objects are released under the GIL
@@ -122,6 +135,8 @@ public:
         progress_ = py::object();
         log_ = py::object();
     }
+    Callbacks(const Callbacks&) = delete;
+    Callbacks& operator=(const Callbacks&) = delete;
 
     Reporter reporter() {
         Reporter r;
@@ -141,14 +156,30 @@ public:
     }
 
 private:
+    using Clock = std::chrono::steady_clock;
+
     bool on_progress(const std::string& stage, double fraction) {
         if (stopped_) return false;
+        if (progress_.is_none() && !(caller_is_main_ && std::this_thread::get_id() == caller_)) return true;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            const Clock::time_point now = Clock::now();
+            const bool due = stage != last_stage_ || fraction >= 1.0 || now - last_call_ >= std::chrono::milliseconds(50);
+            if (!due) return true;
+            last_stage_ = stage;
+            last_call_ = now;
+        }
         py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) return fail();  // Ctrl-C: KeyboardInterrupt after the call
+        if (stopped_) return false;  // another thread stopped it while this one waited for the GIL
+        if (caller_is_main_ && std::this_thread::get_id() == caller_ && PyErr_CheckSignals() != 0)
+            return fail();  // Ctrl-C: KeyboardInterrupt after the call
         if (progress_.is_none()) return true;
         try {
-            py::object answer = progress_(stage, fraction);
-            if (answer.is_none() || PyObject_IsTrue(answer.ptr()) == 1) return true;
+            py::object answer = progress_(utf8(stage), fraction);
+            if (answer.is_none()) return true;
+            const int truth = PyObject_IsTrue(answer.ptr());
+            if (truth < 0) return fail();  // e.g. an array: its error is re-raised
+            if (truth == 1) return true;
             stopped_ = true;
             return false;
         } catch (py::error_already_set& e) {
@@ -160,22 +191,31 @@ private:
     void on_log(LogLevel level, const std::string& text) {
         if (stopped_) return;
         py::gil_scoped_acquire gil;
+        if (stopped_) return;
         try {
-            log_(level == LogLevel::Warning ? "warning" : level == LogLevel::Info ? "info" : "debug", text);
+            log_(level == LogLevel::Warning ? "warning" : level == LogLevel::Info ? "info" : "debug", utf8(text));
         } catch (py::error_already_set& e) {
             e.restore();
             fail();
         }
     }
 
-    bool fail() {  // the Python error indicator is set
-        error_ = std::make_unique<py::error_already_set>();
+    bool fail() {  // the Python error indicator is set; the GIL is held
+        if (!error_)
+            error_ = std::make_unique<py::error_already_set>();
+        else
+            PyErr_Clear();  // keep the first error
         stopped_ = true;
         return false;
     }
 
     py::object progress_, log_;
-    std::unique_ptr<py::error_already_set> error_;
+    std::thread::id caller_;
+    bool caller_is_main_ = false;
+    std::mutex mutex_;
+    std::string last_stage_;
+    Clock::time_point last_call_{};
+    std::unique_ptr<py::error_already_set> error_;  // touched with the GIL held only
     std::atomic<bool> stopped_{false};
 };
 
@@ -186,8 +226,8 @@ auto without_gil(Callbacks& callbacks, Work&& work) {
     try {
         py::gil_scoped_release release;
         r.emplace(work());
-    } catch (const Cancelled&) {
-        callbacks.rethrow_callback_error();
+    } catch (...) {
+        callbacks.rethrow_callback_error();  // the callback's exception (which stopped the work) comes first
         throw;
     }
     callbacks.rethrow_callback_error();
@@ -203,6 +243,8 @@ struct Result {
     py::object report;
     std::vector<std::string> warnings;
     std::vector<std::string> repairs;
+    py::object base_vertices = py::none();  ///< decorate(): the base as used (after repairs)
+    py::object base_faces = py::none();
 };
 
 Result make_result(const Mesh& mesh, const std::vector<int>& element_of_face, const std::vector<int>& source_elements,
@@ -219,15 +261,20 @@ Result make_result(const Mesh& mesh, const std::vector<int>& element_of_face, co
     return out;
 }
 
-std::uint64_t seed_from(const py::int_& seed) {
-    if (py::int_(0) > seed || seed > py::int_(std::numeric_limits<std::uint64_t>::max()))
+/// Any integer (Python int, NumPy integer; not bool or float) in [0, 2^64).
+std::uint64_t seed_from(const py::object& seed) {
+    if (PyBool_Check(seed.ptr()) || !PyIndex_Check(seed.ptr()))
+        throw InvalidInput("seed must be an integer, got " + std::string(py::repr(seed)));
+    const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(seed.ptr()));
+    if (!value) throw py::error_already_set();
+    if (py::int_(0) > value || value > py::int_(std::numeric_limits<std::uint64_t>::max()))
         throw InvalidInput("seed must be an integer in [0, 2^64), got " + std::string(py::repr(seed)));
-    return seed.cast<std::uint64_t>();
+    return value.cast<std::uint64_t>();
 }
 
-double positive_or_none(const py::object& value, const std::string& what) {
-    if (value.is_none()) return 0.0;
-    const double v = value.cast<double>();
+double positive_or_none(const std::optional<double>& value, const std::string& what) {
+    if (!value) return 0.0;
+    const double v = *value;
     if (!std::isfinite(v) || v <= 0.0) throw InvalidInput(what + " must be a positive finite number or None, got " + std::to_string(v));
     return v;
 }
@@ -245,8 +292,8 @@ void add_field(std::vector<Value>& out, const py::object& array, std::size_t cou
 }
 
 Result decorate_py(const py::object& base_vertices, const py::object& base_faces, const py::object& swatch_vertices,
-                   const py::object& swatch_faces, double scale, const py::object& swatch_size, const py::object& height,
-                   const py::int_& seed, int symmetry, const std::string& embed, bool optimise_shell,
+                   const py::object& swatch_faces, double scale, const std::optional<double>& swatch_size, const std::optional<double>& height,
+                   const py::object& seed, int symmetry, const std::string& embed, bool optimise_shell,
                    const py::object& field_vertices, const py::object& field_faces, bool repair, const py::object& progress,
                    const py::object& log) {
     const Mesh base = mesh_from(base_vertices, base_faces, "base");
@@ -273,12 +320,15 @@ Result decorate_py(const py::object& base_vertices, const py::object& base_faces
     Callbacks callbacks(progress, log);
     s.reporter = callbacks.reporter();
     const DecorateResult r = without_gil(callbacks, [&] { return decorate(base, swatch, o); });
-    return make_result(r.decoration.mesh, r.decoration.element_of_face, r.source_element, r.decoration.num_elements,
-                       report_json(r), r.warnings, r.repairs);
+    Result out = make_result(r.decoration.mesh, r.decoration.element_of_face, r.source_element, r.decoration.num_elements,
+                             report_json(r), r.warnings, r.repairs);
+    out.base_vertices = vertices_array(r.base.vertices);
+    out.base_faces = faces_array(r.base.faces);
+    return out;
 }
 
 Result quilt_plane_py(const py::object& swatch_vertices, const py::object& swatch_faces, double width, double height,
-                      const py::int_& seed, double cell_size, bool repair, const py::object& progress, const py::object& log) {
+                      const py::object& seed, double cell_size, bool repair, const py::object& progress, const py::object& log) {
     Mesh swatch = mesh_from(swatch_vertices, swatch_faces, "swatch");
     ValidationOptions vo;
     vo.repair = repair;
@@ -333,11 +383,23 @@ py::tuple validate_py(const py::object& vertices, const py::object& faces, const
     ValidationOptions vo;
     vo.repair = repair;
     vo.require_thin_axis = swatch;
-    const ValidationResult v = validate(m, name, vo);
+    std::optional<ValidationResult> checked;
+    {
+        py::gil_scoped_release release;
+        checked.emplace(validate(m, name, vo));
+    }
+    const ValidationResult& v = *checked;
     return py::make_tuple(vertices_array(v.mesh.vertices), faces_array(v.mesh.faces), v.repairs, v.warnings);
 }
 
-py::tuple read_mesh_py(const std::string& path) {
+/// A str, bytes or os.PathLike as a file name.
+std::string path_from(const py::object& path) {
+    py::object p = py::module_::import("os").attr("fsdecode")(path);
+    return p.cast<std::string>();
+}
+
+py::tuple read_mesh_py(const py::object& path_object) {
+    const std::string path = path_from(path_object);
     Mesh m;
     {
         py::gil_scoped_release release;
@@ -346,14 +408,18 @@ py::tuple read_mesh_py(const std::string& path) {
     return py::make_tuple(vertices_array(m.vertices), faces_array(m.faces));
 }
 
-void write_mesh_py(const std::string& path, const py::object& vertices, const py::object& faces, const py::object& element_ids,
+void write_mesh_py(const py::object& path_object, const py::object& vertices, const py::object& faces, const py::object& element_ids,
                    const std::string& comment, bool assembly_3mf) {
+    const std::string path = path_from(path_object);
     const Mesh m = mesh_from(vertices, faces, "mesh");
     WriteOptions wo;
     wo.comment = comment;
     wo.assembly_3mf = assembly_3mf;
     if (!element_ids.is_none()) {
-        auto ids = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(element_ids);
+        py::array raw = py::array::ensure(element_ids);
+        if (!raw || (raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u'))
+            throw InvalidInput("element_ids must be a 1-D integer array with one entry per face (" + std::to_string(m.faces.size()) + ")");
+        auto ids = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(raw);
         if (!ids || ids.ndim() != 1 || static_cast<std::size_t>(ids.shape(0)) != m.faces.size())
             throw InvalidInput("element_ids must be a 1-D integer array with one entry per face (" + std::to_string(m.faces.size()) + ")");
         auto r = ids.unchecked<1>();
@@ -373,7 +439,7 @@ PYBIND11_MODULE(_meshquilt, m) {
     m.doc() = "meshquilt: cover triangle meshes with geometric textures grown from a swatch (mesh quilting).";
     m.attr("__version__") = meshquilt::version();
 
-    // Most derived last: pybind11 tries the translators in reverse order of registration.
+    // One translator; the most derived types are caught first.
     static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
     static py::exception<InvalidInput> invalid(m, "InvalidInputError", PyExc_ValueError);
     static py::exception<IoError> io(m, "MeshIOError", PyExc_OSError);
@@ -402,7 +468,10 @@ PYBIND11_MODULE(_meshquilt, m) {
         .def_readonly("vertices", &Result::vertices, "(N, 3) float64 vertex positions")
         .def_readonly("faces", &Result::faces, "(F, 3) int32 vertex indices, counter-clockwise seen from outside")
         .def_readonly("element_ids", &Result::element_ids, "(F,) int32 element id per face, in [0, num_elements)")
-        .def_readonly("source_elements", &Result::source_elements, "(num_elements,) int32: the swatch element each grew from")
+        .def_readonly("source_elements", &Result::source_elements,
+                      "(num_elements,) int32: the swatch element each grew from (empty for prepare_print)")
+        .def_readonly("base_vertices", &Result::base_vertices, "decorate(): the base as used, after repairs (else None)")
+        .def_readonly("base_faces", &Result::base_faces, "decorate(): the base's faces as used, after repairs (else None)")
         .def_readonly("num_elements", &Result::num_elements)
         .def_readonly("report", &Result::report, "the quality report (the CLI's --report JSON as a dict)")
         .def_readonly("warnings", &Result::warnings)

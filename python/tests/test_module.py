@@ -420,3 +420,36 @@ def test_flat_swatch_is_named_as_such(base):
     flat_f = np.vstack([np.array([[0, 1, 2], [0, 2, 3]]) + 4 * i for i in range(3)])
     with pytest.raises(ValueError, match="swatch: flat: its thin axis \\(z\\) has no thickness"):
         meshquilt.decorate(*base, flat_v, flat_f)
+
+
+def test_numpy_scalars_paths_and_strict_types(tmp_path, base, rivets, decorated):
+    r = meshquilt.decorate(*base, *rivets, seed=np.int64(7), scale=np.float32(0.5), embed="normal")
+    np.testing.assert_array_equal(r.faces, decorated.faces)
+    with pytest.raises(ValueError, match="seed must be an integer"):
+        meshquilt.decorate(*base, *rivets, seed=True, **FAST)
+    with pytest.raises(ValueError, match="seed must be an integer"):
+        meshquilt.decorate(*base, *rivets, seed=7.0, **FAST)
+    with pytest.raises(TypeError):
+        meshquilt.decorate(*base, *rivets, swatch_size="1", **FAST)
+    v, f = cube()
+    path = tmp_path / "cube.ply"  # a pathlib.Path
+    meshquilt.write_mesh(path, v, f)
+    rv, rf = meshquilt.read_mesh(path)
+    assert rf.shape == (12, 3)
+    with pytest.raises(ValueError, match="element_ids must be a 1-D integer array"):
+        meshquilt.write_mesh(path, v, f, element_ids=np.zeros(12))
+
+
+def test_progress_answer_without_truth_value_is_reraised(base, rivets):
+    with pytest.raises(ValueError, match="truth value"):
+        meshquilt.decorate(*base, *rivets, progress=lambda s, f: np.array([True, False]), **FAST)
+
+
+def test_result_carries_the_base_as_used(base, rivets, decorated):
+    bv, bf = base
+    np.testing.assert_array_equal(decorated.base_vertices, bv)
+    np.testing.assert_array_equal(decorated.base_faces, bf)
+    repaired = meshquilt.decorate(bv, np.vstack([bf, [[0, 0, 1]]]), *rivets, seed=7, repair=True, **FAST)
+    np.testing.assert_array_equal(repaired.base_faces, bf)  # the degenerate face dropped
+    plane = meshquilt.quilt_plane(*rivets, 6, 6)
+    assert plane.base_vertices is None and plane.base_faces is None
