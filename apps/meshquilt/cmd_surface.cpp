@@ -84,7 +84,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         finish_progress();
         const Mesh& base = r.base;
         for (const auto& w : r.repairs) std::cerr << "meshquilt: repaired " << w << '\n';
-        for (const auto& w : r.warnings) std::cerr << "meshquilt: warning: " << w << '\n';
+        // (the warnings were printed by the reporter as they came)
         Mesh out = r.decoration.mesh;
         WriteOptions wo;
         wo.element_of_face = r.decoration.element_of_face;

@@ -39,7 +39,7 @@ struct DecorateResult {
     QualityReport report;
     SurfaceQualityReport surface;
     std::vector<std::string> repairs;   ///< repairs made to the inputs (with `repair` only)
-    std::vector<std::string> warnings;  ///< about the inputs and the synthesis
+    std::vector<std::string> warnings;  ///< about the inputs and the synthesis (also sent to the reporter's log)
     std::optional<PrintResult> print;   ///< with `DecorateOptions::print`
     double seconds = 0.0;               ///< wall time of the whole call
 };

@@ -218,9 +218,12 @@ def test_exception_in_callback_cancels_and_is_reraised(base, rivets):
     assert count[0] == 3  # not called again after it raised
 
 
-def test_log_callback_receives_levels(base, rivets):
+def test_log_callback_receives_warnings_and_info(base, rivets):
     logs = []
-    meshquilt.decorate(*base, *rivets, seed=7, log=lambda level, text: logs.append((level, text)), **FAST)
+    r = meshquilt.decorate(*base, *rivets, seed=7, scale=0.5, log=lambda level, text: logs.append((level, text)))
+    assert r.warnings, "this case lowers the shell height and warns about it"
+    assert [t for lvl, t in logs if lvl == "warning"] == r.warnings
+    assert any(lvl == "info" and f"{r.num_elements} elements" in t for lvl, t in logs), logs
     assert all(level in ("debug", "info", "warning") and isinstance(text, str) for level, text in logs)
 
 
