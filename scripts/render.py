@@ -19,6 +19,7 @@ Also runs inside Blender: blender -b -P scripts/render.py -- IN.obj OUT.jpg
 import argparse
 import colorsys
 import math
+import os
 import sys
 
 import bpy
@@ -26,16 +27,10 @@ import numpy as np
 from bpy_extras.object_utils import world_to_camera_view
 from mathutils import Vector
 
-# Muted earthy palette; each element takes one entry, with a small jitter in value and saturation.
-PALETTE = [
-    (0.80, 0.45, 0.32),  # terracotta
-    (0.86, 0.72, 0.50),  # sand
-    (0.45, 0.56, 0.66),  # slate blue
-    (0.56, 0.66, 0.48),  # sage
-    (0.72, 0.60, 0.70),  # heather
-    (0.90, 0.84, 0.74),  # bone
-    (0.62, 0.50, 0.40),  # walnut
-]
+# The add-on's muted earthy palette (one place for both), each element one entry with a small
+# jitter in value and saturation. Importing the add-on only defines it; nothing is registered.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python", "blender"))
+from meshquilt_addon import PALETTE  # noqa: E402
 
 
 def read_obj(path):
