@@ -20,6 +20,8 @@
 #include "support/solid.h"
 
 #include "core/intersect.h"
+#include "core/triangle_index.h"
+#include "shellmap/visibility.h"
 
 #include <gtest/gtest.h>
 
@@ -92,6 +94,31 @@ std::vector<Case> cases() {
 }
 
 double shell_height(const Case& c) { return c.height * diagonal(c.base); }
+
+/// A 16 x 16 sheet of unit squares (split in two) crumpled in its middle by a smooth bump of
+/// sideways and vertical waves, so strongly that the surface folds back over itself in a few places
+/// (like a scan's crumpled flap) without meeting itself. Moving the fold vertices alone to their
+/// neighbours' mean leaves two of them folded, and the shell over that keeps 4 inverted
+/// tetrahedra; the surface stage's smoothing must leave none.
+Mesh crumpled_sheet() {
+    constexpr int n = 16;
+    constexpr double amplitude = 1.58, wave = 0.889, phase = 1.094, radius = 2.619, lift = 0.371;
+    Mesh m;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double x = i, y = j;
+            const double bump = std::exp(-((x - 8) * (x - 8) + (y - 8) * (y - 8)) / (4.0 * radius * radius));
+            m.vertices.emplace_back(x + amplitude * bump * (std::sin(wave * y + phase) + std::cos(0.7 * x)),
+                                    y + 0.5 * amplitude * bump * std::sin(0.9 * x + phase), 2.0 * lift * bump * std::sin(wave * x + phase));
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+            m.faces.emplace_back(a, b, c);
+            m.faces.emplace_back(a, c, d);
+        }
+    return m;
+}
 
 }  // namespace
 
@@ -220,6 +247,50 @@ TEST(ShellMap, HeightLimitedInNarrowSlot) {
         if (std::fabs(p.z() - 3.0) < 1e-9 && p.x() > 0.9 && p.x() < 1.6 && p.y() > 0.9 && p.y() < 2.1)
             EXPECT_NEAR(s.heights()[v], o.height, 1e-12) << v;
     }
+}
+
+// A base folded back onto itself (no direction sees every face around some vertices from outside)
+// cannot carry a valid shell as it is. The synthesis smooths its copy of such folds; the smoothing
+// must leave no fold behind even where moving the fold vertices alone converges to a folded state
+// (as on the camelhead's flap), and the shell over the result is then fully valid.
+TEST(ShellMap, FoldedBaseSmoothedIntoAValidShell) {
+    Mesh base = crumpled_sheet();
+    auto folds = [](const Mesh& m) {
+        const std::vector<Vec3> fn = mq::face_normals(m);
+        std::vector<std::vector<Vec3>> around(m.vertices.size());
+        for (std::size_t f = 0; f < m.faces.size(); ++f)
+            for (int k = 0; k < 3; ++k) around[static_cast<std::size_t>(m.faces[f][k])].push_back(fn[f]);
+        int n = 0;
+        for (const auto& normals : around) {
+            Vec3 d;
+            if (!normals.empty() && mq::shell::best_visibility(normals, normals.front(), &d) < mq::shell::kMinSeeingCos) ++n;
+        }
+        return n;
+    };
+    ASSERT_GT(folds(base), 0);
+    ASSERT_EQ(mq::count_self_intersections(base, 1), 0);
+    const Mesh original = base;
+    const int moved = mq::shell::smooth_folds(base, mq::shell::kMinSeeingCos);
+    EXPECT_GT(moved, 0);
+    EXPECT_EQ(folds(base), 0);
+    // Only the neighbourhood of the folds moves: the sheet's border stays.
+    for (std::size_t v = 0; v < base.vertices.size(); ++v) {
+        const int i = static_cast<int>(v) % 17, j = static_cast<int>(v) / 17;
+        if (i == 0 || j == 0 || i == 16 || j == 16) EXPECT_EQ(base.vertices[v], original.vertices[v]) << v;
+    }
+    EXPECT_EQ(mq::count_self_intersections(base, 1), 0);
+    mq::ShellOptions o;
+    o.height = 0.3;
+    const mq::ShellMap s(base, o);
+    EXPECT_EQ(s.statistics().inverted_world, 0);
+    EXPECT_EQ(s.statistics().inverted_texture, 0);
+    EXPECT_EQ(s.statistics().offset_intersections, 0);
+    int bad = 0;
+    for (const auto& t : s.tetrahedra()) bad += !(tet_volume(t.world) > 0);
+    EXPECT_EQ(bad, 0);
+    const Mesh off = s.offset_surface();
+    EXPECT_EQ(mq::count_self_intersections(off, 1), 0);
+    EXPECT_FALSE(mq::meshes_intersect(off, base));
 }
 
 TEST(ShellMap, RejectsBadOptions) {

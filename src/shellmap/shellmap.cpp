@@ -49,8 +49,8 @@ constexpr double kHeightSlope = 0.5;
 constexpr double kMinWorldVolume = 1e-3;
 /// Heights are never lowered below this fraction of H by the clearance and intersection rules...
 constexpr double kMinHeight = 0.02;
-/// ... except to mend an inverted prism, whose volumes are positive to first order in the heights:
-/// such corners may go down to this fraction.
+/// ... except to mend an inverted prism, whose volumes are positive to first order in the heights,
+/// or to part offset faces that meet each other: such corners may go down to this fraction.
 constexpr double kMinPrismHeight = 1e-4;
 /// Offset directions must make at least this cosine with every incident face's normal.
 constexpr double kMinDirectionCos = shell::kMinSeeingCos;
@@ -337,11 +337,18 @@ void ShellMap::Impl::limit_heights() {
         const SM sm = to_cgal(both);
         std::vector<std::pair<SM::Face_index, SM::Face_index>> pairs;
         PMP::self_intersections<CGAL::Parallel_if_available_tag>(faces(sm), sm, std::back_inserter(pairs));
+        // lower: 1 down to the floor kMinHeight; 2 (the offset surface meeting itself, where
+        // lowering cannot bring it onto the base) down to kMinPrismHeight.
         std::vector<char> lower(V, 0);
-        for (const auto& [a, b] : pairs)
+        for (const auto& [a, b] : pairs) {
+            const char level = a.idx() >= F && b.idx() >= F ? 2 : 1;
             for (const SM::Face_index g : {a, b})
                 if (g.idx() >= F)
-                    for (int k = 0; k < 3; ++k) lower[static_cast<std::size_t>(base.faces[g.idx() - F][k])] = 1;
+                    for (int k = 0; k < 3; ++k) {
+                        char& l = lower[static_cast<std::size_t>(base.faces[g.idx() - F][k])];
+                        l = std::max(l, level);
+                    }
+        }
         // (e) No other part of the base inside a prism: a ridge or a thin part can enter through a
         // prism's side without touching its vertical edges or its offset face. Faces sharing a
         // corner with the prism's face are its neighbours and touch it by construction.
@@ -379,13 +386,16 @@ void ShellMap::Impl::limit_heights() {
         for (std::size_t f = 0; f < F; ++f)
             if (intruded[f]) {
                 ++intrusions;
-                for (int k = 0; k < 3; ++k) lower[static_cast<std::size_t>(base.faces[f][k])] = 1;
+                for (int k = 0; k < 3; ++k) {
+                    char& l = lower[static_cast<std::size_t>(base.faces[f][k])];
+                    l = std::max<char>(l, 1);
+                }
             }
-        // Lowered to a floor: below it the offset would lie on the base, where rounding alone makes
-        // faces meet (what remains is counted).
+        // Lowered to a floor: below 2% of H the offset would lie on the base, where rounding alone
+        // makes faces meet; offset faces meeting each other may go further (what remains is counted).
         for (std::size_t v = 0; v < V; ++v)
-            if (lower[v] && height[v] > kMinHeight * H) {
-                height[v] = std::max(kMinHeight * H, 0.7 * height[v]);
+            if (const double floor = (lower[v] == 2 ? kMinPrismHeight : kMinHeight) * H; lower[v] && height[v] > floor) {
+                height[v] = std::max(floor, 0.7 * height[v]);
                 top[v] = base.vertices[v] + height[v] * dir[v];
                 changed = true;
             }

@@ -55,7 +55,12 @@ int smooth_folds(Mesh& mesh, double min_cos, int rounds) {
         std::sort(r.begin(), r.end());
         r.erase(std::unique(r.begin(), r.end()), r.end());
     }
+    // Moving a fold vertex to its neighbours' mean can converge while the ring around it stays
+    // folded; then the smoothed neighbourhood grows (up to `kMaxRings` rings around the folds).
+    constexpr int kMaxRings = 4;
     std::vector<char> moved(V, 0);
+    int rings = 0, stalled = 0;
+    std::size_t fewest = std::numeric_limits<std::size_t>::max();
     for (int round = 0; round < rounds; ++round) {
         const std::vector<Vec3> fn = face_normals(mesh);
         std::vector<int> folds;
@@ -71,15 +76,35 @@ int smooth_folds(Mesh& mesh, double min_cos, int rounds) {
             if (best_visibility(normals, sum.norm() > 0 ? Vec3(sum.normalized()) : normals.front(), &d) < min_cos) folds.push_back(static_cast<int>(v));
         }
         if (folds.empty()) break;
-        std::vector<Vec3> target(folds.size());
-        for (std::size_t i = 0; i < folds.size(); ++i) {
-            Vec3 c = Vec3::Zero();
-            for (int w : ring[static_cast<std::size_t>(folds[i])]) c += mesh.vertices[static_cast<std::size_t>(w)];
-            target[i] = c / static_cast<double>(ring[static_cast<std::size_t>(folds[i])].size());
+        if (folds.size() < fewest) {
+            fewest = folds.size();
+            stalled = 0;
+        } else if (++stalled >= 3 && rings < kMaxRings) {
+            ++rings;
+            stalled = 0;
         }
-        for (std::size_t i = 0; i < folds.size(); ++i) {
-            mesh.vertices[static_cast<std::size_t>(folds[i])] = target[i];
-            moved[static_cast<std::size_t>(folds[i])] = 1;
+        std::vector<char> in(V, 0);
+        std::vector<int> region = folds;
+        for (int v : folds) in[static_cast<std::size_t>(v)] = 1;
+        for (int r = 0, begin = 0; r < rings; ++r) {
+            const int end = static_cast<int>(region.size());
+            for (int i = begin; i < end; ++i)
+                for (int w : ring[static_cast<std::size_t>(region[static_cast<std::size_t>(i)])])
+                    if (!in[static_cast<std::size_t>(w)]) {
+                        in[static_cast<std::size_t>(w)] = 1;
+                        region.push_back(w);
+                    }
+            begin = end;
+        }
+        std::vector<Vec3> target(region.size());
+        for (std::size_t i = 0; i < region.size(); ++i) {
+            Vec3 c = Vec3::Zero();
+            for (int w : ring[static_cast<std::size_t>(region[i])]) c += mesh.vertices[static_cast<std::size_t>(w)];
+            target[i] = c / static_cast<double>(ring[static_cast<std::size_t>(region[i])].size());
+        }
+        for (std::size_t i = 0; i < region.size(); ++i) {
+            mesh.vertices[static_cast<std::size_t>(region[i])] = target[i];
+            moved[static_cast<std::size_t>(region[i])] = 1;
         }
     }
     return static_cast<int>(std::count(moved.begin(), moved.end(), 1));

@@ -20,7 +20,9 @@ double best_visibility(const std::vector<Vec3>& normals, const Vec3& start, Vec3
 
 /// Moves each vertex on a fold of `mesh` (no direction sees all its faces with a cosine of at least
 /// `min_cos`) to the mean of its neighbours, repeatedly, until no fold is left or `rounds` pass.
-/// Returns the number of distinct vertices moved.
+/// When three rounds bring no fewer folds (a vertex at its ring's mean whose ring is folded), the
+/// vertices within one more ring of the folds are smoothed with them (up to four rings). Returns
+/// the number of distinct vertices moved.
 int smooth_folds(Mesh& mesh, double min_cos, int rounds = 10);
 
 }  // namespace meshquilt::shell
