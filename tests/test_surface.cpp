@@ -262,10 +262,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2, false}),
     [](const auto& info) { return info.param.name; });
 
-// Measured, not yet within 15% (docs/surface.md): pebbles come out 5-16% denser than the swatch
-// (1.07 in the planar stage too: where an old and a new pebble are merged, the one with more ground
-// of its own wins, which favours the larger); cobbles stay at 0.69-0.79 (the planar kernel's own
-// shortfall, issue 2). Run with --gtest_also_run_disabled_tests.
+// Measured, not yet within 15% (docs/surface.md): pebbles come out up to 23% denser than the swatch
+// (more pebbles, smaller ones squeezed between old ones, not larger ones: the planar stage shows it
+// too); cobbles stay at 0.64-0.79 (the planar kernel's own shortfall, issue 2). Run with
+// --gtest_also_run_disabled_tests.
 INSTANTIATE_TEST_SUITE_P(
     DISABLED_NotYetMet, SurfaceBases,
     ::testing::Values(BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22},
