@@ -226,8 +226,7 @@ struct BaseCase {
     std::function<Mesh()> make;
     std::string swatch;
     double scale;
-    /// Density within 15% in every region. Off where normal displacement (the embedding until the
-    /// shell map lands) bends elements over sharp edges, and for chain mail on curved bases (see
+    /// Density within 15% in every region. Off for chain mail on doubly curved bases (see
     /// docs/surface.md for the measured figures).
     bool density = true;
 };
@@ -257,19 +256,18 @@ INSTANTIATE_TEST_SUITE_P(
                       BaseCase{"eight", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "rivets", 0.2},
                       BaseCase{"spot", [] { return mq::read_mesh(surface_data_path("spot.obj")); }, "rivets", 0.2},
                       BaseCase{"cylinder_chainmail", [] { return shapes::open_cylinder(1.0, 2.0, 64, 32); }, "chainmail", 0.2},
-                      BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22, false},
-                      BaseCase{"cube", [] { return shapes::cube(2.0); }, "rivets", 0.25, false},
+                      BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22},
+                      BaseCase{"cube", [] { return shapes::cube(2.0); }, "rivets", 0.25},
                       BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2, false}),
     [](const auto& info) { return info.param.name; });
 
-// Measured, not yet within 15% (docs/surface.md): pebbles come out up to 23% denser than the swatch
-// (more pebbles, smaller ones squeezed between old ones, not larger ones: the planar stage shows it
-// too); cobbles stay at 0.64-0.79 (the planar kernel's own shortfall, issue 2). Run with
-// --gtest_also_run_disabled_tests.
+// Measured, not yet within 15% (docs/surface.md): pebbles on the eight come out up to 23% denser
+// than the swatch (more pebbles, smaller ones squeezed between old ones, not larger ones: the planar
+// stage shows it too); cobbles stay at 0.64-0.79 (the planar kernel's own shortfall, issue 2). Run
+// with --gtest_also_run_disabled_tests.
 INSTANTIATE_TEST_SUITE_P(
     DISABLED_NotYetMet, SurfaceBases,
-    ::testing::Values(BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22},
-                      BaseCase{"eight_pebbles", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "pebbles", 0.2},
+    ::testing::Values(BaseCase{"eight_pebbles", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "pebbles", 0.2},
                       BaseCase{"torus_cobbles", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "cobbles", 0.2}),
     [](const auto& info) { return info.param.name; });
 
@@ -329,7 +327,10 @@ TEST(Surface, ChainMailOnACylinderStaysChainMail) {
     ASSERT_GT(interior, 50);
     RecordProperty("links", h);
     std::printf("cylinder chain mail: %s\n", h.c_str());
-    EXPECT_GE(four, 0.85 * interior) << h;  // measured: 847 of 923 (92%)
+    EXPECT_GE(four, 0.85 * interior) << h;  // measured: 859 of 928 (93%)
+    // Rings that collided where the kernel put them were nudged into place (measured: 824 of 917
+    // rings linked with 4 without nudging).
+    EXPECT_GT(run.r.surface.elements_nudged, 0);
 }
 
 TEST(Surface, InsideOutBaseIsFlippedWithAWarningAndDecoratedOutside) {

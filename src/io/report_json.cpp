@@ -96,6 +96,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"patches_shrunk", s.patches_shrunk},
                         {"frozen_elements_seen", s.frozen_elements_seen},
                         {"elements_folded", s.elements_folded},
+                        {"elements_nudged", s.elements_nudged},
                         {"symmetry", s.symmetry},
                         {"base_units_per_swatch_unit", s.base_scale},
                         {"region_density_min", s.region_density_min},

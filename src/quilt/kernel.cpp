@@ -438,6 +438,16 @@ double selected_area(const Mesh& m, const std::vector<char>& sel) {
     return a;
 }
 
+double element_gap(const TriangleIndex& a, const Box3& a_box, const Mesh& b, double cap) {
+    double gap = cap;
+    if (!a_box.overlaps(bounding_box(b), cap)) return gap;
+    for (const Vec3& v : b.vertices) {
+        if (((a_box.min.array() - cap) > v.array()).any() || (v.array() > (a_box.max.array() + cap)).any()) continue;
+        gap = std::min(gap, a.closest(v).distance);
+    }
+    return gap;
+}
+
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, const KernelParams& params, Mesh* result, std::string* why,
                      StitchOutcome* outcome, OwnAreas* own) {
     auto fail = [why](const char* reason) {

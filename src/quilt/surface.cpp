@@ -552,7 +552,7 @@ private:
         stage_seconds_["merging"] += seconds_since(t0);
         t0 = Clock::now();
 
-        apply(plan, flat, locator, hs, fr.local);
+        apply(plan, flat, locator, hs, fr.local, old, obstacles);
         stage_seconds_["collisions"] += seconds_since(t0);
 
         // Faces under the placed footprint are processed (the seed always).
@@ -675,7 +675,10 @@ private:
     }
 
     /// Applies a plan like the planar stage does, with collisions tested on the embedded elements.
-    void apply(const quilt::PatchPlan& plan, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local) {
+    /// `old` and `obstacles` are the output's elements in the patch frame before the plan (for the
+    /// clearance of nudged elements).
+    void apply(const quilt::PatchPlan& plan, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local,
+               const std::vector<quilt::OldElement>& old, const std::vector<Mesh>& obstacles) {
         using Kind = quilt::PatchPlan::Change::Kind;
         struct Candidate {
             const quilt::PatchPlan::Change* change;
@@ -760,10 +763,58 @@ private:
             }
             pending = std::move(refused);
         }
+        // Beyond the paper: a new element without partner that collides (on a doubly curved base
+        // the lattices of neighbouring patches meet at small angles, and interlocked rings then
+        // touch) tries small moves in the frame: 8 directions at half and one mean edge length,
+        // the first that fits is taken. A blob (genus 0)
+        // must also keep the swatch's clearance from the elements around it, or nudging would
+        // squeeze it into a gap the swatch never leaves that narrow; a ring interlocks, and comes
+        // closer where the lattice bends.
+        std::vector<const Mesh*> standing;
+        for (const auto& oe : old) standing.push_back(&oe.mesh);
+        for (const Mesh& m : obstacles) standing.push_back(&m);
+        for (const auto& ch : plan.changes) standing.push_back(&ch.mesh);
+        std::vector<Candidate> unplaced;
+        for (auto& c : pending) {
+            if (c.change->kind != Kind::Added || !nudge(*c.change, standing, place_sized)) unplaced.push_back(std::move(c));
+        }
+        pending = std::move(unplaced);
         for (const auto& c : pending) {
             if (c.change->kind == Kind::Stitched) ++report_.stitch_failures;
             else if (c.change->kind != Kind::Deformed) ++report_.collisions_avoided;
         }
+    }
+
+    /// Tries the small moves of a colliding addition (see apply); true when one was added.
+    template <class PlaceSized>
+    bool nudge(const quilt::PatchPlan::Change& ch, const std::vector<const Mesh*>& standing, const PlaceSized& place_sized) {
+        const Mesh& m = ch.mesh;
+        const bool interlocks = ch.source >= 0 && sw_.element_genus[static_cast<std::size_t>(ch.source)] > 0;
+        auto keeps_gap = [&](const Mesh& moved) {
+            if (interlocks || !(sw_.near_gap > 0.0)) return true;
+            const TriangleIndex index(moved);
+            const Box3 box = bounding_box(moved);
+            for (const Mesh* o : standing)
+                if (o != &m && !o->faces.empty() && quilt::element_gap(index, box, *o, sw_.near_gap) < sw_.near_gap) return false;
+            return true;
+        };
+        for (int radius = 1; radius <= 2; ++radius)
+            for (int dir = 0; dir < 8; ++dir) {
+                const double r = 0.5 * radius * sw_.mean_edge, a = dir * 0.7853981633974483;  // dir * 45 degrees
+                const Vec3 d(r * std::cos(a), r * std::sin(a), 0.0);
+                Mesh moved = m;
+                for (Vec3& v : moved.vertices) v += d;
+                std::vector<SurfacePoint> anchors;
+                Mesh embedded;
+                // The collision test first: most moves fail it, and it costs less than the others.
+                if (!place_sized(moved, ch.source, true, &anchors, &embedded) || collider_.collides(embedded, {}) || !keeps_gap(moved) ||
+                    count_self_intersections(embedded, 1) > 0)
+                    continue;
+                add_element(std::move(anchors), m.faces, std::move(embedded), ch.source);
+                ++surface_.elements_nudged;
+                return true;
+            }
+        return false;
     }
 
     void add_element(std::vector<SurfacePoint> anchors, const std::vector<Tri>& faces, Mesh embedded, int source) {

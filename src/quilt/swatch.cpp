@@ -78,6 +78,8 @@ SwatchData prepare_swatch(const Mesh& input) {
             e.faces.push_back(t);
         }
         s.element_closed.push_back(quilt::is_closed_oriented(e));
+        // Euler: V - E + F = 2 - 2g on a closed surface, where E = 3F / 2.
+        s.element_genus.push_back(s.element_closed.back() ? std::max(0, (2 - (static_cast<int>(e.vertices.size()) - static_cast<int>(e.faces.size()) / 2)) / 2) : 0);
         s.elements.push_back(std::move(e));
     }
     s.elements_disjoint = intersecting_element_pairs(s.mesh, comp, 1).empty();
@@ -86,6 +88,26 @@ SwatchData prepare_swatch(const Mesh& input) {
         for (int k = 0; k < 3; ++k) len += (s.mesh.vertices[f[k]] - s.mesh.vertices[f[(k + 1) % 3]]).norm();
     s.mean_edge = len / (3.0 * static_cast<double>(std::max<std::size_t>(1, s.mesh.faces.size())));
     s.area = mesh_area(s.mesh);
+    if (s.elements.size() >= 2 && s.elements_disjoint) {
+        // Gaps are looked for up to the median element's diagonal (or a tenth of the footprint's
+        // shorter side, if larger).
+        std::vector<TriangleIndex> index;
+        std::vector<Box3> box;
+        std::vector<double> diagonal;
+        for (const Mesh& e : s.elements) {
+            index.emplace_back(e);
+            box.push_back(bounding_box(e));
+            diagonal.push_back(box.back().size().norm());
+        }
+        std::nth_element(diagonal.begin(), diagonal.begin() + static_cast<std::ptrdiff_t>(diagonal.size() / 2), diagonal.end());
+        const double cap = std::max(0.1 * std::min(s.box.size().x(), s.box.size().y()), diagonal[diagonal.size() / 2]);
+        std::vector<double> gap(s.elements.size(), cap);
+        for (std::size_t i = 0; i < s.elements.size(); ++i)
+            for (std::size_t j = 0; j < s.elements.size(); ++j)
+                if (i != j) gap[i] = std::min(gap[i], quilt::element_gap(index[i], box[i], s.elements[j], cap));
+        std::sort(gap.begin(), gap.end());
+        s.near_gap = gap[static_cast<std::size_t>(0.05 * static_cast<double>(gap.size() - 1))];
+    }
     return s;
 }
 
