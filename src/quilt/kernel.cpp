@@ -438,14 +438,17 @@ double selected_area(const Mesh& m, const std::vector<char>& sel) {
     return a;
 }
 
-double element_gap(const TriangleIndex& a, const Box3& a_box, const Mesh& b, double cap) {
-    double gap = cap;
-    if (!a_box.overlaps(bounding_box(b), cap)) return gap;
-    for (const Vec3& v : b.vertices) {
+double element_gap(const Mesh& a, const Box3& a_box, const Mesh& b, double cap) {
+    if (!a_box.overlaps(bounding_box(b), cap)) return cap;
+    // At most about 2,000 vertices of each side (a stride), so large elements stay cheap.
+    const std::size_t sa = std::max<std::size_t>(1, a.vertices.size() / 2000), sb = std::max<std::size_t>(1, b.vertices.size() / 2000);
+    double best = cap * cap;
+    for (std::size_t j = 0; j < b.vertices.size(); j += sb) {
+        const Vec3& v = b.vertices[j];
         if (((a_box.min.array() - cap) > v.array()).any() || (v.array() > (a_box.max.array() + cap)).any()) continue;
-        gap = std::min(gap, a.closest(v).distance);
+        for (std::size_t i = 0; i < a.vertices.size(); i += sa) best = std::min(best, (a.vertices[i] - v).squaredNorm());
     }
-    return gap;
+    return std::sqrt(best);
 }
 
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, const KernelParams& params, Mesh* result, std::string* why,

@@ -83,9 +83,10 @@ struct OwnAreas {
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& overlap, const KernelParams& params, Mesh* result,
                      std::string* why = nullptr, StitchOutcome* outcome = nullptr, OwnAreas* own = nullptr);
 
-/// The smallest distance, capped at `cap`, from a vertex of `b` to the surface of the element that
-/// `a` indexes (with bounding box `a_box`); only vertices within `cap` of that box are looked at.
-double element_gap(const TriangleIndex& a, const Box3& a_box, const Mesh& b, double cap);
+/// The smallest distance, capped at `cap`, between vertices of `a` (with bounding box `a_box`) and
+/// of `b` (looked at only within `cap` of that box; elements of more than about 2,000 vertices are
+/// sampled with a stride). Plain loops: the result does not depend on any tree's build order.
+double element_gap(const Mesh& a, const Box3& a_box, const Mesh& b, double cap);
 
 /// True when every edge has exactly two faces with opposite orientation (a closed, oriented,
 /// edge-manifold surface).

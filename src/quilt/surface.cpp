@@ -720,6 +720,7 @@ private:
             return !folded(*embedded);
         };
         std::vector<Candidate> pending;
+        std::vector<const Mesh*> applied;  // frame meshes of the changes applied, for nudging
         for (const auto& ch : plan.changes) {
             Candidate c{&ch, {}, {}, {}, {}};
             const bool fresh = ch.kind == Kind::Added || ch.kind == Kind::Replaced;
@@ -756,6 +757,7 @@ private:
                     if (kind == Kind::Replaced) ++report_.elements_replaced;
                 }
                 add_element(std::move(*anchors), *faces, std::move(*embedded), source);
+                applied.push_back(faces == &ch->fallback.faces ? &ch->fallback : &ch->mesh);
             }
             if (refused.size() == before) {
                 pending = std::move(refused);
@@ -773,7 +775,7 @@ private:
         std::vector<const Mesh*> standing;
         for (const auto& oe : old) standing.push_back(&oe.mesh);
         for (const Mesh& m : obstacles) standing.push_back(&m);
-        for (const auto& ch : plan.changes) standing.push_back(&ch.mesh);
+        standing.insert(standing.end(), applied.begin(), applied.end());
         std::vector<Candidate> unplaced;
         for (auto& c : pending) {
             if (c.change->kind != Kind::Added || !nudge(*c.change, standing, place_sized)) unplaced.push_back(std::move(c));
@@ -797,10 +799,9 @@ private:
         const bool interlocks = ch.source >= 0 && sw_.element_genus[static_cast<std::size_t>(ch.source)] > 0;
         auto keeps_gap = [&](const Mesh& moved) {
             if (interlocks || !(sw_.near_gap > 0.0)) return true;
-            const TriangleIndex index(moved);
             const Box3 box = bounding_box(moved);
             for (const Mesh* o : standing)
-                if (o != &m && !o->faces.empty() && quilt::element_gap(index, box, *o, sw_.near_gap) < sw_.near_gap) return false;
+                if (o != &m && !o->faces.empty() && quilt::element_gap(moved, box, *o, sw_.near_gap) < sw_.near_gap) return false;
             return true;
         };
         for (int radius = 1; radius <= 2; ++radius)

@@ -91,11 +91,9 @@ SwatchData prepare_swatch(const Mesh& input) {
     if (s.elements.size() >= 2 && s.elements_disjoint) {
         // Gaps are looked for up to the median element's diagonal (or a tenth of the footprint's
         // shorter side, if larger).
-        std::vector<TriangleIndex> index;
         std::vector<Box3> box;
         std::vector<double> diagonal;
         for (const Mesh& e : s.elements) {
-            index.emplace_back(e);
             box.push_back(bounding_box(e));
             diagonal.push_back(box.back().size().norm());
         }
@@ -104,7 +102,7 @@ SwatchData prepare_swatch(const Mesh& input) {
         std::vector<double> gap(s.elements.size(), cap);
         for (std::size_t i = 0; i < s.elements.size(); ++i)
             for (std::size_t j = 0; j < s.elements.size(); ++j)
-                if (i != j) gap[i] = std::min(gap[i], quilt::element_gap(index[i], box[i], s.elements[j], cap));
+                if (i != j) gap[i] = std::min(gap[i], quilt::element_gap(s.elements[i], box[i], s.elements[j], cap));
         std::sort(gap.begin(), gap.end());
         s.near_gap = gap[static_cast<std::size_t>(0.05 * static_cast<double>(gap.size() - 1))];
     }

@@ -25,7 +25,7 @@ struct SwatchData {
     Box3 box;
     bool elements_disjoint = true;  ///< no two swatch elements intersect (then none may in the output)
     /// The 5th percentile, over the swatch's elements, of the distance from each to its nearest
-    /// neighbour (vertex to surface, looked for up to the median element's diagonal): how close the
+    /// neighbour (vertex to vertex, looked for up to the median element's diagonal): how close the
     /// swatch lets its elements come. 0 when elements intersect or there is only one.
     double near_gap = 0.0;
     /// Genus of each element (closed elements; 0 for open ones): a ring (genus >= 1) can interlock
