@@ -85,7 +85,7 @@ struct SurfaceQualityReport {
     int patches_shrunk = 0;        ///< patches made smaller because LSCM distorted area by more than 4
     int frozen_elements_seen = 0;  ///< old elements reaching beyond a patch, treated as obstacles
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
-    int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small rigid move
+    int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
     int symmetry = 0;              ///< N of the N-direction field used
     double base_scale = 0.0;       ///< base units per swatch unit
     double swatch_density = 0.0;   ///< element area per footprint area in the swatch

@@ -768,10 +768,9 @@ private:
         // Beyond the paper: a new element without partner that collides (on a doubly curved base
         // the lattices of neighbouring patches meet at small angles, and interlocked rings then
         // touch) tries small moves in the frame: 8 directions at half and one mean edge length,
-        // the first that fits is taken. A blob (genus 0)
-        // must also keep the swatch's clearance from the elements around it, or nudging would
-        // squeeze it into a gap the swatch never leaves that narrow; a ring interlocks, and comes
-        // closer where the lattice bends.
+        // the first that fits is taken. A blob (genus 0) must also keep the swatch's clearance
+        // from the elements around it, or nudging would squeeze it into a gap the swatch never
+        // leaves that narrow; a ring interlocks, and comes closer where the lattice bends.
         std::vector<const Mesh*> standing;
         for (const auto& oe : old) standing.push_back(&oe.mesh);
         for (const Mesh& m : obstacles) standing.push_back(&m);
