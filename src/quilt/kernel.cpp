@@ -438,6 +438,11 @@ double selected_area(const Mesh& m, const std::vector<char>& sel) {
     return a;
 }
 
+bool is_elongated(const Mesh& m) {
+    const Vec3 d = bounding_box(m).size();
+    return std::max(d.x(), d.y()) > 3.0 * std::max(std::min(d.x(), d.y()), 1e-300);
+}
+
 double element_gap(const Mesh& a, const Box3& a_box, const Mesh& b, double cap) {
     if (!a_box.overlaps(bounding_box(b), cap)) return cap;
     // At most about 2,000 vertices of each side (a stride), so large elements stay cheap.
@@ -672,11 +677,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         };
         // A stitch joins halves of two elements; unless they are long elements that stitching is
         // meant to extend (threads), the result must keep about the size of the one it is counted as.
-        auto elongated = [](const Mesh& m) {
-            const Vec3 d = bounding_box(m).size();
-            return std::max(d.x(), d.y()) > 3.0 * std::max(std::min(d.x(), d.y()), 1e-300);
-        };
-        if (ch.kind == PatchPlan::Change::Stitched && !(elongated(mo) && elongated(mi)) &&
+        if (ch.kind == PatchPlan::Change::Stitched && !(is_elongated(mo) && is_elongated(mi)) &&
             resized(ch.mesh, own.old_part > own.new_part ? mo : mi)) {
             const bool new_wins = own.new_part > own.old_part;
             ch.kind = new_wins ? PatchPlan::Change::Replaced : PatchPlan::Change::Deformed;

@@ -83,6 +83,9 @@ struct OwnAreas {
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& overlap, const KernelParams& params, Mesh* result,
                      std::string* why = nullptr, StitchOutcome* outcome = nullptr, OwnAreas* own = nullptr);
 
+/// A long element (a thread): its xy box more than 3 times longer than wide.
+bool is_elongated(const Mesh& m);
+
 /// The smallest distance, capped at `cap`, between vertices of `a` (with bounding box `a_box`) and
 /// of `b` (looked at only within `cap` of that box; elements of more than about 2,000 vertices are
 /// sampled with a stride). Plain loops: the result does not depend on any tree's build order.

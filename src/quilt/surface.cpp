@@ -793,8 +793,7 @@ private:
         // Threads are left as they are: a move of a long element meets the threads it crosses as
         // often as not, and each try embeds and tests the whole thread (Bunny + Weave took twice
         // as long for 10% more elements).
-        const Vec3 size = bounding_box(m).size();
-        if (std::max(size.x(), size.y()) > 3.0 * std::max(std::min(size.x(), size.y()), 1e-300)) return false;
+        if (quilt::is_elongated(m)) return false;
         const bool interlocks = ch.source >= 0 && sw_.element_genus[static_cast<std::size_t>(ch.source)] > 0;
         auto keeps_gap = [&](const Mesh& moved) {
             if (interlocks || !(sw_.near_gap > 0.0)) return true;
