@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -102,22 +103,32 @@ TEST_P(PlanarQuilt, ElementsWholeDisjointAndVaried) {
     EXPECT_GE(q.patches, 4);
     EXPECT_LT(2 * q.largest_translation_share, q.patches) << q.largest_translation_share << " of " << q.patches;
 
-    // The output covers the footprint: element centroids spread over all four quadrants.
-    int quadrant[4] = {0, 0, 0, 0};
+    // Element centroids lie on the footprint, and the output covers it: each quadrant holds more
+    // than an eighth of the area (by faces: a stitched thread may span the whole output, so counting
+    // element centroids would put it in one quadrant).
     for (const Mesh& e : mq::test::split_elements(r.mesh, r.element_of_face)) {
         const Vec3 c = centroid(e);
         ASSERT_GE(c.x(), 0.0);
         ASSERT_GE(c.y(), 0.0);
         ASSERT_LT(c.x(), run.width);
         ASSERT_LT(c.y(), run.height);
-        ++quadrant[(c.x() < run.width / 2 ? 0 : 1) + (c.y() < run.height / 2 ? 0 : 2)];
     }
-    for (int k = 0; k < 4; ++k) EXPECT_GT(quadrant[k], q.elements / 8) << "quadrant " << k;
+    double quadrant[4] = {0, 0, 0, 0}, total = 0.0;
+    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f) {
+        const Vec3& p0 = r.mesh.vertices[r.mesh.faces[f][0]];
+        const Vec3& p1 = r.mesh.vertices[r.mesh.faces[f][1]];
+        const Vec3& p2 = r.mesh.vertices[r.mesh.faces[f][2]];
+        const Vec3 c = (p0 + p1 + p2) / 3.0;
+        const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+        total += a;
+        quadrant[(c.x() < run.width / 2 ? 0 : 1) + (c.y() < run.height / 2 ? 0 : 2)] += a;
+    }
+    for (int k = 0; k < 4; ++k) EXPECT_GT(quadrant[k], total / 8) << "quadrant " << k;
 }
 
 // Element density within 10% of the swatch's, and no sparse region. Met for compact elements
-// (pebbles, rivets) and chain mail; not yet for long threads and tessellations (see docs/planar.md):
-// those run with --gtest_also_run_disabled_tests until they pass.
+// (pebbles, rivets), chain mail and the weave's long threads; not yet for the tessellation (cobbles,
+// see docs/planar.md): it runs with --gtest_also_run_disabled_tests until it passes.
 class PlanarDensity : public ::testing::TestWithParam<std::tuple<std::string, int>> {};
 
 TEST_P(PlanarDensity, DensityMatchesSwatch) {
@@ -129,6 +140,7 @@ TEST_P(PlanarDensity, DensityMatchesSwatch) {
     const double mx = 0.15 * sbox.size().x(), my = 0.15 * sbox.size().y();
     const double swatch_density = window_density(run.swatch, mx, my, sbox.size().x() - mx, sbox.size().y() - my);
     const double out_density = window_density(r.mesh, mx, my, run.width - mx, run.height - my);
+    std::printf("%s seed %d: density %.3f of the swatch's\n", name.c_str(), seed, out_density / swatch_density);
     EXPECT_NEAR(out_density / swatch_density, 1.0, 0.10) << "swatch " << swatch_density << " output " << out_density;
 
     // No empty region: every block of half a swatch footprint holds a fair share of geometry.
@@ -149,9 +161,10 @@ TEST_P(PlanarDensity, DensityMatchesSwatch) {
 
 auto param_name = [](const auto& info) { return std::get<0>(info.param) + "_seed" + std::to_string(std::get<1>(info.param)); };
 INSTANTIATE_TEST_SUITE_P(Met, PlanarDensity,
-                         ::testing::Combine(::testing::Values("pebbles", "rivets", "chainmail"), ::testing::Values(1, 2, 3)), param_name);
+                         ::testing::Combine(::testing::Values("pebbles", "rivets", "chainmail", "weave"), ::testing::Values(1, 2, 3)),
+                         param_name);
 INSTANTIATE_TEST_SUITE_P(DISABLED_NotYetMet, PlanarDensity,
-                         ::testing::Combine(::testing::Values("weave", "cobbles"), ::testing::Values(1, 2, 3)), param_name);
+                         ::testing::Combine(::testing::Values("cobbles"), ::testing::Values(1, 2, 3)), param_name);
 
 INSTANTIATE_TEST_SUITE_P(BundledSwatches, PlanarQuilt,
                          ::testing::Combine(::testing::Values("weave", "chainmail", "pebbles", "rivets", "cobbles"),

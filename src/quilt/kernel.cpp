@@ -25,6 +25,9 @@ namespace {
 /// half-way to its partner, which may be of another size).
 constexpr double kMaxAreaChange = 1.3;
 
+/// A stitch deforms its element within this many mean edge lengths of the seam (see stitch_elements).
+constexpr double kSeamReach = 6.0;
+
 using Side = std::function<bool(double, double)>;
 
 bool in_overlap(const Side& ov, const Vec3& p) { return ov(p.x(), p.y()); }
@@ -537,6 +540,28 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
         for (int v : la) cons.push_back(PointConstraint::vertex(v, 0.5 * (joined.vertices[v] + closest_on_polyline(joined.vertices, lb, joined.vertices[v]))));
         for (int v : lb) cons.push_back(PointConstraint::vertex(v, 0.5 * (joined.vertices[v] + closest_on_polyline(joined.vertices, la, joined.vertices[v]))));
     }
+    // Beyond the paper: only the seam's neighbourhood moves; farther than kSeamReach mean edge
+    // lengths from every cut loop each half stays where it is, so the elements around it there
+    // (threads crossing a thread, rings linked with a ring) keep their clearance. (With the loops
+    // alone constrained, Eq. 5 would carry each half whole towards the seam.)
+    {
+        std::vector<Vec3> loop_points;
+        for (const auto& l : loops_out)
+            for (int v : l) loop_points.push_back(joined.vertices[v]);
+        for (const auto& l : loops_in)
+            for (int v : l) loop_points.push_back(joined.vertices[v]);
+        const double r2 = std::pow(kSeamReach * params.metric.unit, 2);
+        for (std::size_t v = 0; v < joined.vertices.size(); ++v) {
+            const Vec3& p = joined.vertices[v];
+            bool near = false;
+            for (const Vec3& q : loop_points)
+                if ((p - q).squaredNorm() < r2) {
+                    near = true;
+                    break;
+                }
+            if (!near) cons.push_back(PointConstraint::vertex(static_cast<int>(v), p));
+        }
+    }
     joined.vertices = laplacian_deform(joined, cons, params.mu);
 
     std::vector<int> seam;
@@ -634,6 +659,17 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             cons_out.push_back(PointConstraint::vertex(p.vertex, c));
             const Tri& f = mi.faces[static_cast<std::size_t>(p.face)];
             cons_in.push_back({{f[0], f[1], f[2]}, p.bary, c});
+        }
+        if (is_elongated(mo) && is_elongated(mi)) {
+            // Beyond the paper: two threads deform only on contested ground; elsewhere each stays
+            // where it is, clear of the threads crossing it there. (Eq. 5-6 alone would shift a whole
+            // thread along with its overlapping end, into its crossings. Compact elements move whole
+            // and keep their shape, as in the paper; anchoring part of a pebble or a ring would
+            // stretch it.)
+            for (std::size_t v = 0; v < mo.vertices.size(); ++v)
+                if (!in_overlap(ov.old_side, mo.vertices[v])) cons_out.push_back(PointConstraint::vertex(static_cast<int>(v), mo.vertices[v]));
+            for (std::size_t v = 0; v < mi.vertices.size(); ++v)
+                if (!in_overlap(ov.new_side, mi.vertices[v])) cons_in.push_back(PointConstraint::vertex(static_cast<int>(v), mi.vertices[v]));
         }
         Mesh out_d = mo, in_d = mi;
         out_d.vertices = laplacian_deform(mo, cons_out, params.mu);
