@@ -21,7 +21,10 @@ struct PointConstraint {
 
 /// New vertex positions minimising sum_i |L(w_i) - L(v_i)|^2 + mu sum_k |C_k w - c_k|^2 (Eq. 5/6 with
 /// the uniform Laplacian of Eq. 4). A tiny regulariser keeps parts without constraints in place.
-/// Returns the input positions unchanged when there are no constraints.
-std::vector<Vec3> laplacian_deform(const Mesh& mesh, const std::vector<PointConstraint>& constraints, double mu = 1.0);
+/// Vertices with `fixed[i]` stay exactly where they are (they leave the system; the Laplacian rows
+/// around them keep them as known values). Returns the input positions unchanged when there are no
+/// constraints.
+std::vector<Vec3> laplacian_deform(const Mesh& mesh, const std::vector<PointConstraint>& constraints, double mu = 1.0,
+                                   const std::vector<char>& fixed = {});
 
 }  // namespace meshquilt::quilt

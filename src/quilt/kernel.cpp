@@ -40,6 +40,14 @@ double mean_edge(const Mesh& m, int f) {
     return ((V[t[0]] - V[t[1]]).norm() + (V[t[1]] - V[t[2]]).norm() + (V[t[2]] - V[t[0]]).norm()) / 3.0;
 }
 
+Box3 padded(Box3 b, double pad) {
+    b.min -= Vec3::Constant(pad);
+    b.max += Vec3::Constant(pad);
+    return b;
+}
+
+bool contains(const Box3& b, const Vec3& p) { return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all(); }
+
 std::uint64_t edge_key(int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); }
 
 /// Faces adjacent across each edge: adjacency[f][k] is the face across edge (f[k], f[k+1]) or -1.
@@ -141,9 +149,10 @@ void append_faces(const Mesh& m, const std::vector<char>& sel, Mesh& dst) {
 /// provides geometry there) and, with `side`, those outside its side of the overlap.
 std::vector<char> anchored_faces(const Mesh& m, const TriangleIndex& partner, double reach, const Side* side) {
     std::vector<char> out(m.faces.size(), 0);
+    const Box3 near = padded(bounding_box(partner.mesh()), reach);  // farther from the partner's box is farther from it
     for (std::size_t f = 0; f < m.faces.size(); ++f) {
         const Vec3 c = centroid(m, static_cast<int>(f));
-        out[f] = (side && !in_overlap(*side, c)) || partner.closest(c).distance > reach;
+        out[f] = (side && !in_overlap(*side, c)) || !contains(near, c) || partner.closest(c).distance > reach;
     }
     return out;
 }
@@ -163,9 +172,12 @@ CutResult cut_element(const Mesh& a, const TriangleIndex& b_index, const std::ve
     const std::size_t nf = a.faces.size();
     const auto adj_a = face_adjacency(a);
 
+    // Distances to b matter only around faces the cut may take (not anchored): an edge between two
+    // anchored faces links two SOURCE nodes and is never cut, whatever its weight.
     std::vector<char> used(a.vertices.size(), 0);
-    for (const Tri& f : a.faces)
-        for (int k = 0; k < 3; ++k) used[f[k]] = 1;
+    for (std::size_t f = 0; f < nf; ++f)
+        if (!a_anchor[f])
+            for (int k = 0; k < 3; ++k) used[a.faces[f][k]] = 1;
     std::vector<double> dist_b(a.vertices.size(), 0.0);
     for (std::size_t v = 0; v < a.vertices.size(); ++v)
         if (used[v]) dist_b[v] = b_index.closest(a.vertices[v]).distance;
@@ -181,11 +193,11 @@ CutResult cut_element(const Mesh& a, const TriangleIndex& b_index, const std::ve
     std::vector<double> partner_dist(nf, 0.0);
     std::vector<char> sink(nf, 0);
     for (std::size_t f = 0; f < nf; ++f) {
+        if (res.anchored[f]) continue;
         const Vec3 c = centroid(a, static_cast<int>(f));
         const ClosestHit h = b_index.closest(c);
         partner_face[f] = h.face;
         partner_dist[f] = h.distance;
-        if (res.anchored[f]) continue;
         const double phi = a_own_index.closest(c).distance - b_own_index.closest(c).distance;
         if (phi < -band) res.anchored[f] = 1;
         else if (phi > band) sink[f] = 1;
@@ -540,11 +552,12 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
         for (int v : la) cons.push_back(PointConstraint::vertex(v, 0.5 * (joined.vertices[v] + closest_on_polyline(joined.vertices, lb, joined.vertices[v]))));
         for (int v : lb) cons.push_back(PointConstraint::vertex(v, 0.5 * (joined.vertices[v] + closest_on_polyline(joined.vertices, la, joined.vertices[v]))));
     }
-    // Beyond the paper: only the seam's neighbourhood moves; farther than kSeamReach mean edge
-    // lengths from every cut loop each half stays where it is, so the elements around it there
-    // (threads crossing a thread, rings linked with a ring) keep their clearance. (With the loops
-    // alone constrained, Eq. 5 would carry each half whole towards the seam.)
-    {
+    // Beyond the paper: when two threads are stitched only the seam's neighbourhood moves; farther
+    // than kSeamReach mean edge lengths from every cut loop each half stays exactly where it is, clear
+    // of the threads crossing it there. (With the loops alone constrained, Eq. 5 carries each half
+    // whole towards the seam. Compact elements still do, as in the paper: see plan_patch.)
+    std::vector<char> far(joined.vertices.size(), 0);
+    if (is_elongated(c_out) && is_elongated(c_in)) {
         std::vector<Vec3> loop_points;
         for (const auto& l : loops_out)
             for (int v : l) loop_points.push_back(joined.vertices[v]);
@@ -559,10 +572,10 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
                     near = true;
                     break;
                 }
-            if (!near) cons.push_back(PointConstraint::vertex(static_cast<int>(v), p));
+            far[v] = !near;
         }
     }
-    joined.vertices = laplacian_deform(joined, cons, params.mu);
+    joined.vertices = laplacian_deform(joined, cons, params.mu, far);
 
     std::vector<int> seam;
     for (std::size_t i = 0; i < loops_out.size(); ++i) {
@@ -660,20 +673,21 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             const Tri& f = mi.faces[static_cast<std::size_t>(p.face)];
             cons_in.push_back({{f[0], f[1], f[2]}, p.bary, c});
         }
+        std::vector<char> fixed_out, fixed_in;
         if (is_elongated(mo) && is_elongated(mi)) {
             // Beyond the paper: two threads deform only on contested ground; elsewhere each stays
             // where it is, clear of the threads crossing it there. (Eq. 5-6 alone would shift a whole
             // thread along with its overlapping end, into its crossings. Compact elements move whole
             // and keep their shape, as in the paper; anchoring part of a pebble or a ring would
             // stretch it.)
-            for (std::size_t v = 0; v < mo.vertices.size(); ++v)
-                if (!in_overlap(ov.old_side, mo.vertices[v])) cons_out.push_back(PointConstraint::vertex(static_cast<int>(v), mo.vertices[v]));
-            for (std::size_t v = 0; v < mi.vertices.size(); ++v)
-                if (!in_overlap(ov.new_side, mi.vertices[v])) cons_in.push_back(PointConstraint::vertex(static_cast<int>(v), mi.vertices[v]));
+            fixed_out.resize(mo.vertices.size());
+            fixed_in.resize(mi.vertices.size());
+            for (std::size_t v = 0; v < mo.vertices.size(); ++v) fixed_out[v] = !in_overlap(ov.old_side, mo.vertices[v]);
+            for (std::size_t v = 0; v < mi.vertices.size(); ++v) fixed_in[v] = !in_overlap(ov.new_side, mi.vertices[v]);
         }
         Mesh out_d = mo, in_d = mi;
-        out_d.vertices = laplacian_deform(mo, cons_out, params.mu);
-        in_d.vertices = laplacian_deform(mi, cons_in, params.mu);
+        out_d.vertices = laplacian_deform(mo, cons_out, params.mu, fixed_out);
+        in_d.vertices = laplacian_deform(mi, cons_in, params.mu, fixed_in);
 
         // Section 2.7: merge.
         PatchPlan::Change ch;

@@ -12,6 +12,8 @@
 #include "quilt/swatch.h"
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -85,6 +87,33 @@ struct OutputElement {
     int collider_id = -1;
     std::vector<std::size_t> cells;  ///< grid cells its triangles touch (with multiplicity per triangle)
 };
+
+/// The faces of `result` that are not, vertex for vertex and bit for bit, faces of `before`. A change
+/// to an element (a stitch, a deformation of threads) leaves the parts away from its seam exactly where
+/// they were; those parts were tested against every element around when the later of the two went
+/// in, so only the changed faces need a collision test.
+Mesh changed_faces(const Mesh& result, const Mesh& before) {
+    using Key = std::array<double, 9>;
+    auto key = [](const Mesh& m, const Tri& f) {
+        int first = 0;  // rotate so that the smallest corner comes first (orientation is kept)
+        for (int k = 1; k < 3; ++k) {
+            const Vec3& a = m.vertices[f[k]];
+            const Vec3& b = m.vertices[f[first]];
+            if (std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3)) first = k;
+        }
+        Key out;
+        for (int k = 0; k < 3; ++k)
+            for (int d = 0; d < 3; ++d) out[static_cast<std::size_t>(3 * k + d)] = m.vertices[f[(first + k) % 3]][d];
+        return out;
+    };
+    std::set<Key> old_faces;
+    for (const Tri& f : before.faces) old_faces.insert(key(before, f));
+    Mesh out;
+    out.vertices = result.vertices;
+    for (const Tri& f : result.faces)
+        if (!old_faces.count(key(result, f))) out.faces.push_back(f);
+    return out;
+}
 
 class PlanarQuilter {
 public:
@@ -262,7 +291,9 @@ private:
                 if (ch->old_id >= 0) ignore.push_back(elems_[static_cast<std::size_t>(ch->old_id)].collider_id);
                 const Mesh* mesh = &ch->mesh;
                 Kind kind = ch->kind;
-                if (collider_.collides(*mesh, ignore)) {
+                // Faces the change kept exactly as they were need no new test (see changed_faces).
+                const Mesh probe = ch->old_id >= 0 ? changed_faces(*mesh, elems_[static_cast<std::size_t>(ch->old_id)].mesh) : Mesh();
+                if (collider_.collides(ch->old_id >= 0 ? probe : *mesh, ignore)) {
                     if (ch->fallback.faces.empty() || collider_.collides(ch->fallback, ignore)) {
                         refused.push_back(ch);
                         continue;
