@@ -1,0 +1,98 @@
+// labels: unit
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// The planar kernel's deformation and stitching of threads (quilt/deform.h, quilt/kernel.h): parts
+// away from the contested ground stay exactly where they were, so the threads crossing them there
+// stay clear.
+
+#include "meshquilt/analysis.h"
+#include "quilt/deform.h"
+#include "quilt/kernel.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <set>
+#include <vector>
+
+namespace mq = meshquilt;
+using mq::Mesh;
+using mq::Vec3;
+namespace shapes = mq::test::shapes;
+
+namespace {
+
+// A square tube of 40 unit voxels along x, scaled to 10 x 0.25 x 0.25: a thread.
+Mesh thread(const Vec3& offset) {
+    std::vector<std::array<int, 3>> cells;
+    for (int i = 0; i < 40; ++i) cells.push_back({i, 0, 0});
+    Mesh m = shapes::voxels(cells);
+    for (Vec3& v : m.vertices) v = 0.25 * v + offset;
+    return m;
+}
+
+std::set<std::array<double, 3>> points(const Mesh& m) {
+    std::set<std::array<double, 3>> out;
+    for (const Vec3& v : m.vertices) out.insert({v.x(), v.y(), v.z()});
+    return out;
+}
+
+}  // namespace
+
+TEST(Deformation, FixedVerticesStayAndTheRestFollowsTheConstraints) {
+    const Mesh m = thread(Vec3::Zero());
+    std::vector<mq::quilt::PointConstraint> cons;
+    std::vector<char> fixed(m.vertices.size(), 0);
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+        if (m.vertices[v].x() > 7.5) cons.push_back(mq::quilt::PointConstraint::vertex(static_cast<int>(v), m.vertices[v] + Vec3(0, 0.2, 0)));
+        fixed[v] = m.vertices[v].x() < 5.0;
+    }
+    const std::vector<Vec3> held = mq::quilt::laplacian_deform(m, cons, 1.0, fixed);
+    const std::vector<Vec3> free = mq::quilt::laplacian_deform(m, cons, 1.0);
+    double far_free = 0.0;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+        const Vec3& p = m.vertices[v];
+        if (fixed[v]) {
+            EXPECT_EQ(held[v], p) << "fixed vertex " << v << " moved";  // bit for bit
+            if (p.x() < 1.0) far_free = std::max(far_free, (free[v] - p).norm());
+        }
+        if (p.x() > 8.5) EXPECT_NEAR(held[v].y() - p.y(), 0.2, 0.05) << "vertex " << v;
+    }
+    // Without the mask the whole thread goes along with its constrained end (what fixing prevents).
+    EXPECT_GT(far_free, 0.1);
+}
+
+TEST(Stitching, TwoThreadsBecomeOneAndMoveOnlyNearTheSeam) {
+    // An old thread over x in [0, 10], a new one over [6, 16] slightly off it; the new patch covers
+    // x >= 6, the output x < 10.
+    const Mesh old_thread = thread(Vec3::Zero());
+    const Mesh new_thread = thread(Vec3(6.0, 0.04, 0.02));
+    mq::quilt::Overlap ov;
+    ov.old_side = [](double x, double) { return x >= 6.0; };
+    ov.new_side = [](double x, double) { return x < 10.0; };
+    mq::quilt::KernelParams params;
+    params.metric.unit = 0.25;
+    Mesh joined;
+    std::string why;
+    mq::quilt::StitchOutcome outcome = mq::quilt::StitchOutcome::KeepOld;
+    ASSERT_TRUE(mq::quilt::stitch_elements(old_thread, new_thread, ov, params, &joined, &why, &outcome)) << why;
+    ASSERT_EQ(outcome, mq::quilt::StitchOutcome::Stitched);
+    EXPECT_TRUE(mq::quilt::is_closed_oriented(joined));
+    const mq::Box3 box = mq::bounding_box(joined);
+    EXPECT_NEAR(box.min.x(), 0.0, 1e-9);
+    EXPECT_NEAR(box.max.x(), 16.0, 1e-9);
+    // Away from the contested ground [6, 10] (and the seam inside it), both halves are untouched.
+    const auto kept = points(joined);
+    int checked = 0;
+    for (const Vec3& v : old_thread.vertices)
+        if (v.x() < 4.0) {
+            EXPECT_TRUE(kept.count({v.x(), v.y(), v.z()})) << "old vertex at x = " << v.x() << " moved";
+            ++checked;
+        }
+    for (const Vec3& v : new_thread.vertices)
+        if (v.x() > 12.0) {
+            EXPECT_TRUE(kept.count({v.x(), v.y(), v.z()})) << "new vertex at x = " << v.x() << " moved";
+            ++checked;
+        }
+    EXPECT_GT(checked, 50);
+}
