@@ -84,6 +84,7 @@ struct SurfaceQualityReport {
     int base_faces_processed = 0;  ///< faces the synthesis reached (all, on success)
     int patches_shrunk = 0;        ///< patches made smaller because LSCM distorted area by more than 4
     int frozen_elements_seen = 0;  ///< old elements reaching beyond a patch, treated as obstacles
+    int threads_extended = 0;      ///< old threads reaching beyond a patch, handed to the kernel with their far part carried along
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
     int symmetry = 0;              ///< N of the N-direction field used

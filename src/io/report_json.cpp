@@ -95,6 +95,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"coverage", s.base_faces ? static_cast<double>(s.base_faces_processed) / s.base_faces : 0.0},
                         {"patches_shrunk", s.patches_shrunk},
                         {"frozen_elements_seen", s.frozen_elements_seen},
+                        {"threads_extended", s.threads_extended},
                         {"elements_folded", s.elements_folded},
                         {"elements_nudged", s.elements_nudged},
                         {"symmetry", s.symmetry},

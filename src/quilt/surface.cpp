@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <array>
 #include <map>
 #include <random>
 #include <unordered_map>
@@ -485,6 +486,7 @@ private:
         };
         std::vector<quilt::OldElement> old;
         std::vector<Mesh> obstacles;  // mappable triangles of partial elements
+        reach_.clear();
         for (int id : near) {
             const SurfElement& e = elems_[static_cast<std::size_t>(id)];
             Mesh m;
@@ -496,6 +498,14 @@ private:
                 whole = whole && ok[v];
             }
             if (whole) {
+                m.faces = e.faces;
+                old.push_back({id, std::move(m)});
+            } else if (extend_thread(e, ok, flat, hs, &m, &reach_[id])) {
+                // Beyond the paper: a thread reaching beyond the patch still takes part, with its far
+                // vertices carried into the frame along its own edges (see extend_thread). The kernel
+                // leaves a thread's part off the contested ground exactly where it was, so those
+                // vertices go back to their own anchors (apply).
+                ++surface_.threads_extended;
                 m.faces = e.faces;
                 old.push_back({id, std::move(m)});
             } else {
@@ -639,12 +649,74 @@ private:
         }
     };
 
+    /// Frame positions of an old element's vertices that the patch does not cover, keyed back to
+    /// their anchors (`reach_`, per old element id, for one patch).
+    using Reach = std::map<std::array<double, 3>, SurfacePoint>;
+
+    /// For an old element only partly on the patch (`mapped[v]`: vertex v has frame coordinates in
+    /// `m`): when it is a thread (quilt::is_elongated), gives every other vertex frame coordinates,
+    /// breadth first along the element's edges from the mapped ones: a vertex reached from w lies at
+    /// w's position plus the base-point offset between the two, taken through the affine map of the
+    /// patch face w was mapped by (its chart is continued flat beyond the patch). Heights are the
+    /// anchors'. Fills `reach` with the carried positions; false (nothing changed) for compact elements.
+    bool extend_thread(const SurfElement& e, const std::vector<char>& mapped, const quilt::FlatPatch& flat, double hs, Mesh* m,
+                       Reach* reach) const {
+        const std::size_t n = e.anchors.size();
+        auto base_point = [&](const SurfacePoint& sp) {
+            const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
+            return Vec3(sp.bary[0] * base_.mesh.vertices[static_cast<std::size_t>(t[0])] +
+                        sp.bary[1] * base_.mesh.vertices[static_cast<std::size_t>(t[1])] +
+                        sp.bary[2] * base_.mesh.vertices[static_cast<std::size_t>(t[2])]);
+        };
+        std::vector<std::vector<int>> nbr(n);
+        for (const Tri& t : e.faces)
+            for (int k = 0; k < 3; ++k) nbr[static_cast<std::size_t>(t[k])].push_back(t[(k + 1) % 3]);
+        std::vector<int> via(n, -1);  // the patch face (local index) each vertex is mapped through
+        std::vector<int> queue;
+        for (std::size_t v = 0; v < n; ++v)
+            if (mapped[v]) {
+                via[v] = face_slot_[static_cast<std::size_t>(e.anchors[v].face)];
+                queue.push_back(static_cast<int>(v));
+            }
+        if (queue.empty()) return false;
+        Mesh out = *m;
+        for (std::size_t head = 0; head < queue.size(); ++head) {
+            const auto w = static_cast<std::size_t>(queue[head]);
+            for (int u : nbr[w]) {
+                const auto uu = static_cast<std::size_t>(u);
+                if (via[uu] >= 0) continue;
+                via[uu] = via[w];
+                const Vec2 d = to_flat(flat, static_cast<std::size_t>(via[w]), base_point(e.anchors[uu]) - base_point(e.anchors[w]));
+                out.vertices[uu] = Vec3(out.vertices[w].x() + d.x(), out.vertices[w].y() + d.y(), e.anchors[uu].height / hs);
+                queue.push_back(u);
+            }
+        }
+        if (queue.size() != n) return false;  // vertices without faces: leave the element alone
+        out.faces = e.faces;
+        if (!out.vertices.empty() && !std::all_of(out.vertices.begin(), out.vertices.end(), [](const Vec3& p) { return p.allFinite(); })) return false;
+        if (!quilt::is_elongated(out)) return false;
+        reach->clear();
+        for (std::size_t v = 0; v < n; ++v)
+            if (!mapped[v]) (*reach)[{out.vertices[v].x(), out.vertices[v].y(), out.vertices[v].z()}] = e.anchors[v];
+        out.faces.clear();
+        *m = std::move(out);
+        return true;
+    }
+
     /// A kernel mesh (patch frame) as surface points; false when a vertex is off the patch.
+    /// Vertices found in `reach` (a thread's part beyond the patch, unchanged) take their own anchors.
     bool to_surface(const Mesh& m, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs,
-                    std::vector<SurfacePoint>* out) const {
+                    std::vector<SurfacePoint>* out, const Reach* reach = nullptr) const {
         out->resize(m.vertices.size());
         for (std::size_t v = 0; v < m.vertices.size(); ++v) {
             const Vec3& p = m.vertices[v];
+            if (reach) {
+                const auto it = reach->find({p.x(), p.y(), p.z()});
+                if (it != reach->end()) {
+                    (*out)[v] = it->second;
+                    continue;
+                }
+            }
             const auto hit = locator.locate(p.head<2>(), 2.0 * cell_);
             if (hit.local_face < 0) return false;
             (*out)[v] = {flat.faces[static_cast<std::size_t>(hit.local_face)], hit.bary, p.z() * hs};
@@ -696,8 +768,9 @@ private:
             ++surface_.elements_folded;
             return true;
         };
+        const Reach* reach = nullptr;  // of the old element of the change being placed
         auto place_sized = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded) {
-            if (!to_surface(m, flat, locator, hs, anchors)) return false;
+            if (!to_surface(m, flat, locator, hs, anchors, reach)) return false;
             *embedded = embed_element(*anchors, m.faces);
             if (!fresh || source < 0 || height_scale_ > 0) return true;
             // What the map did to this element's area (not what deformation did: that was the kernel's
@@ -724,7 +797,11 @@ private:
         for (const auto& ch : plan.changes) {
             Candidate c{&ch, {}, {}, {}, {}};
             const bool fresh = ch.kind == Kind::Added || ch.kind == Kind::Replaced;
-            if (!place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded)) continue;
+            const auto r = reach_.find(ch.old_id);
+            reach = ch.old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
+            const bool placed = place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded);
+            reach = nullptr;
+            if (!placed) continue;
             if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback)) c.fallback = Mesh();
             pending.push_back(std::move(c));
         }
@@ -1027,6 +1104,7 @@ private:
     std::vector<char> processed_;
     std::vector<int> score_;
     std::vector<int> face_slot_;
+    std::map<int, Reach> reach_;  ///< per old element id: its vertices carried beyond the current patch
     std::vector<Vec3> frame_dir_;  ///< per base face: +x of the frame of the patch that processed it
     std::vector<std::vector<int>> elems_on_face_;
     std::vector<SurfElement> elems_;
