@@ -13,12 +13,12 @@
 
 #include <algorithm>
 #include <array>
-#include <set>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 
 namespace meshquilt {

@@ -17,10 +17,10 @@
 #include "shellmap/visibility.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <complex>
-#include <array>
 #include <map>
 #include <random>
 #include <unordered_map>
@@ -500,12 +500,13 @@ private:
             if (whole) {
                 m.faces = e.faces;
                 old.push_back({id, std::move(m)});
-            } else if (extend_thread(e, ok, flat, hs, &m, &reach_[id])) {
+            } else if (Reach reach; extend_thread(e, ok, flat, hs, &m, &reach)) {
                 // Beyond the paper: a thread reaching beyond the patch still takes part, with its far
                 // vertices carried into the frame along its own edges (see extend_thread). The kernel
                 // leaves a thread's part off the contested ground exactly where it was, so those
                 // vertices go back to their own anchors (apply).
                 ++surface_.threads_extended;
+                reach_[id] = std::move(reach);
                 m.faces = e.faces;
                 old.push_back({id, std::move(m)});
             } else {
