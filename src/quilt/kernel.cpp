@@ -40,14 +40,6 @@ double mean_edge(const Mesh& m, int f) {
     return ((V[t[0]] - V[t[1]]).norm() + (V[t[1]] - V[t[2]]).norm() + (V[t[2]] - V[t[0]]).norm()) / 3.0;
 }
 
-Box3 padded(Box3 b, double pad) {
-    b.min -= Vec3::Constant(pad);
-    b.max += Vec3::Constant(pad);
-    return b;
-}
-
-bool contains(const Box3& b, const Vec3& p) { return (p.array() >= b.min.array()).all() && (p.array() <= b.max.array()).all(); }
-
 std::uint64_t edge_key(int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); }
 
 /// Faces adjacent across each edge: adjacency[f][k] is the face across edge (f[k], f[k+1]) or -1.
@@ -149,10 +141,12 @@ void append_faces(const Mesh& m, const std::vector<char>& sel, Mesh& dst) {
 /// provides geometry there) and, with `side`, those outside its side of the overlap.
 std::vector<char> anchored_faces(const Mesh& m, const TriangleIndex& partner, double reach, const Side* side) {
     std::vector<char> out(m.faces.size(), 0);
-    const Box3 near = padded(bounding_box(partner.mesh()), reach);  // farther from the partner's box is farther from it
+    const Box3 partner_box = bounding_box(partner.mesh());  // farther than `reach` from the box is farther from the partner
     for (std::size_t f = 0; f < m.faces.size(); ++f) {
         const Vec3 c = centroid(m, static_cast<int>(f));
-        out[f] = (side && !in_overlap(*side, c)) || !contains(near, c) || partner.closest(c).distance > reach;
+        Box3 at;
+        at.extend(c);
+        out[f] = (side && !in_overlap(*side, c)) || !partner_box.overlaps(at, reach) || partner.closest(c).distance > reach;
     }
     return out;
 }

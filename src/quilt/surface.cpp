@@ -507,7 +507,6 @@ private:
                 // vertices go back to their own anchors (apply).
                 ++surface_.threads_extended;
                 reach_[id] = std::move(reach);
-                m.faces = e.faces;
                 old.push_back({id, std::move(m)});
             } else {
                 ++surface_.frozen_elements_seen;
@@ -659,9 +658,12 @@ private:
     /// breadth first along the element's edges from the mapped ones: a vertex reached from w lies at
     /// w's position plus the base-point offset between the two, taken through the affine map of the
     /// patch face w was mapped by (its chart is continued flat beyond the patch). Heights are the
-    /// anchors'. Fills `reach` with the carried positions; false (nothing changed) for compact elements.
+    /// anchors'. Fills `m` (faces included) and `reach` with the carried positions; false (nothing
+    /// changed) for compact elements.
     bool extend_thread(const SurfElement& e, const std::vector<char>& mapped, const quilt::FlatPatch& flat, double hs, Mesh* m,
                        Reach* reach) const {
+        // Threads come from thread swatch elements: compact ones are turned away before any work.
+        if (e.source < 0 || !quilt::is_elongated(sw_.elements[static_cast<std::size_t>(e.source)])) return false;
         const std::size_t n = e.anchors.size();
         auto base_point = [&](const SurfacePoint& sp) {
             const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
@@ -693,13 +695,12 @@ private:
             }
         }
         if (queue.size() != n) return false;  // vertices without faces: leave the element alone
+        if (!std::all_of(out.vertices.begin(), out.vertices.end(), [](const Vec3& p) { return p.allFinite(); })) return false;
         out.faces = e.faces;
-        if (!out.vertices.empty() && !std::all_of(out.vertices.begin(), out.vertices.end(), [](const Vec3& p) { return p.allFinite(); })) return false;
-        if (!quilt::is_elongated(out)) return false;
+        if (!quilt::is_elongated(out)) return false;  // a remnant of a thread, shorter than wide
         reach->clear();
         for (std::size_t v = 0; v < n; ++v)
             if (!mapped[v]) (*reach)[{out.vertices[v].x(), out.vertices[v].y(), out.vertices[v].z()}] = e.anchors[v];
-        out.faces.clear();
         *m = std::move(out);
         return true;
     }
