@@ -23,6 +23,9 @@ nlohmann::json planar(const QualityReport& r, double total_seconds) {
     j["stitch_failures"] = r.stitch_failures;
     j["collisions_avoided"] = r.collisions_avoided;
     j["elements_crowded_out"] = r.elements_crowded_out;
+    j["elements_squeezed"] = r.elements_squeezed;
+    j["bald_spots_filled"] = r.bald_spots_filled;
+    j["joints_closed"] = r.joints_closed;
     j["cell_size"] = r.cell_size;
     j["swatch_density"] = r.swatch_density;
     j["output_density"] = r.output_density;

@@ -6,6 +6,8 @@
 #include "quilt/deform.h"
 #include "quilt/swatch.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
 #include <maxflow.h>
 #include <tbb/parallel_for.h>
 
@@ -27,6 +29,11 @@ constexpr double kMaxAreaChange = 1.3;
 
 /// A stitch deforms its element within this many mean edge lengths of the seam (see stitch_elements).
 constexpr double kSeamReach = 6.0;
+
+/// A blob squeezed clear of its partner must keep this share of its footprint (see plan_patch).
+constexpr double kMinSqueezedArea = 0.6;
+/// ... and is pushed by at most this share of its width at a time.
+constexpr double kMaxSqueezePush = 1.0 / 3.0;
 
 using Side = std::function<bool(double, double)>;
 
@@ -405,6 +412,16 @@ void relax_seam(Mesh& m, const std::vector<int>& seeds, int rings, int iteration
     }
 }
 
+/// A closed genus-0 element that is not a thread (a pebble, a stone, a rivet head; not a ring).
+bool is_blob(const Mesh& m) {
+    if (is_elongated(m) || !is_closed_oriented(m)) return false;
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) used[f[k]] = 1;
+    const auto v = std::count(used.begin(), used.end(), 1);
+    return 2 * v - static_cast<long>(m.faces.size()) == 4;  // Euler: V - E + F = V - F / 2 = 2
+}
+
 int count_components(const Mesh& m) {
     std::vector<int> parent(m.vertices.size());
     std::iota(parent.begin(), parent.end(), 0);
@@ -445,6 +462,131 @@ double selected_area(const Mesh& m, const std::vector<char>& sel) {
     for (std::size_t f = 0; f < m.faces.size(); ++f)
         if (sel[f]) a += face_area(m, f);
     return a;
+}
+
+namespace {
+
+using HullKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+}  // namespace
+
+std::vector<Vec2> xy_hull(const Mesh& m) {
+    std::vector<char> used(m.vertices.size(), 0);
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) used[f[k]] = 1;
+    std::vector<HullKernel::Point_2> pts, hull;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v)
+        if (used[v]) pts.emplace_back(m.vertices[v].x(), m.vertices[v].y());
+    CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
+    std::vector<Vec2> out;
+    for (const auto& p : hull) out.emplace_back(p.x(), p.y());
+    return out;
+}
+
+namespace {
+
+}  // namespace
+
+double polygon_area(const std::vector<Vec2>& h) {
+    double a = 0.0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        const Vec2& p = h[i];
+        const Vec2& q = h[(i + 1) % h.size()];
+        a += p.x() * q.y() - p.y() * q.x();
+    }
+    return 0.5 * std::abs(a);
+}
+
+namespace {
+
+/// The shortest push of hull `b` along an edge normal of either hull that leaves `gap` between it and
+/// hull `a`: `depth` <= 0 when they are that far apart already. `axis` points from `a` to `b`.
+struct Push {
+    Vec2 axis = Vec2::Zero();
+    double depth = -1e300;
+    double lo = 0.0, hi = 0.0;  ///< b's extent along the axis
+};
+Push shortest_push(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double gap) {
+    Push best;
+    best.depth = 1e300;
+    auto range = [](const std::vector<Vec2>& h, const Vec2& n, double* lo, double* hi) {
+        *lo = 1e300;
+        *hi = -1e300;
+        for (const Vec2& p : h) {
+            *lo = std::min(*lo, n.dot(p));
+            *hi = std::max(*hi, n.dot(p));
+        }
+    };
+    for (const std::vector<Vec2>* h : {&a, &b})
+        for (std::size_t i = 0; i < h->size(); ++i) {
+            const Vec2 e = (*h)[(i + 1) % h->size()] - (*h)[i];
+            if (e.norm() < 1e-300) continue;
+            const Vec2 n0 = Vec2(e.y(), -e.x()).normalized();
+            for (const Vec2 n : {n0, Vec2(-n0)}) {
+                double a_lo, a_hi, b_lo, b_hi;
+                range(a, n, &a_lo, &a_hi);
+                range(b, n, &b_lo, &b_hi);
+                const double depth = a_hi + gap - b_lo;
+                if (depth < best.depth) best = {n, depth, b_lo, b_hi};
+            }
+        }
+    return best;
+}
+
+}  // namespace
+
+void push_side(Mesh& m, const Vec2& axis, double lo, double hi, double depth) {
+    const double width = hi - lo;
+    if (!(width > 0.0)) return;
+    // s -> s + depth (1 - t)^2, t = (s - lo) / width in [0, 1]: the side at `lo` moves by `depth`, the
+    // far side stays; the derivative 1 - 2 depth (1 - t) / width is positive while depth < width / 2.
+    for (Vec3& v : m.vertices) {
+        const Vec2 xy(v.x(), v.y());
+        const double t = std::clamp((axis.dot(xy) - lo) / width, 0.0, 1.0);
+        const Vec2 moved = xy + axis * (depth * (1.0 - t) * (1.0 - t));
+        v.x() = moved.x();
+        v.y() = moved.y();
+    }
+}
+
+bool squeeze_clear(Mesh& m, const std::vector<const Mesh*>& others, double gap, double min_area, double max_push) {
+    const Box3 box = bounding_box(m);
+    std::vector<std::vector<Vec2>> near;
+    for (const Mesh* o : others)
+        if (o && !o->faces.empty() && box.overlaps(bounding_box(*o), gap + 0.5 * std::max(box.size().x(), box.size().y())))
+            near.push_back(xy_hull(*o));
+    return squeeze_clear(m, near, gap, min_area, max_push);
+}
+
+bool squeeze_clear(Mesh& m, const std::vector<std::vector<Vec2>>& others, double gap, double min_area, double max_push) {
+    std::vector<Vec2> hull = xy_hull(m);
+    const double area0 = polygon_area(hull);
+    if (hull.size() < 3 || !(area0 > 0.0)) return false;
+    const Box3 box = bounding_box(m);
+    // Hulls whose box is farther than the gap plus a third of the element's width cannot be reached.
+    const double pad = gap + std::max(box.size().x(), box.size().y()) / 3.0;
+    std::vector<const std::vector<Vec2>*> near;
+    for (const auto& o : others) {
+        if (o.size() < 3) continue;
+        Box3 ob;
+        for (const Vec2& p : o) ob.extend(Vec3(p.x(), p.y(), box.min.z()));
+        if (box.overlaps(ob, pad)) near.push_back(&o);
+    }
+    const double tiny = 1e-9 * std::max(box.size().x(), box.size().y());
+    for (int round = 0; round <= 8; ++round) {
+        Push deepest;
+        for (const auto* o : near) {
+            const Push p = shortest_push(*o, hull, gap);
+            if (p.depth > deepest.depth) deepest = p;
+        }
+        if (deepest.depth <= tiny) return polygon_area(hull) >= min_area * area0;
+        if (round == 8) return false;
+        const double width = deepest.hi - deepest.lo;
+        if (!(width > 0.0) || deepest.depth > max_push * width) return false;
+        push_side(m, deepest.axis, deepest.lo, deepest.hi, deepest.depth);
+        hull = xy_hull(m);
+    }
+    return false;
 }
 
 bool is_elongated(const Mesh& m) {
@@ -651,7 +793,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
     for (std::size_t o = 0; o < old.size(); ++o)
         if (partner_of_old[o] >= 0) matched.push_back(o);
     plan.correspondences = static_cast<int>(matched.size());
-    std::vector<PatchPlan::Change> merged_changes(matched.size());
+    std::vector<PatchPlan::Change> merged_changes(matched.size()), squeezed(matched.size());
     std::vector<std::string> failures(matched.size());
     tbb::parallel_for(std::size_t(0), matched.size(), [&](std::size_t k) {
         const std::size_t o = matched[k];
@@ -732,6 +874,27 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         if (ch.kind == PatchPlan::Change::Replaced && resized(ch.mesh, mi)) ch.mesh = mi;
         else if (ch.kind == PatchPlan::Change::Deformed && resized(ch.mesh, mo)) ch.mesh = mo;
         if (!ch.fallback.faces.empty() && resized(ch.fallback, mi)) ch.fallback = mi;
+        // Beyond the paper: of two blobs (cobbles, pebbles) that could not be merged into one, the
+        // loser used to be dropped, and its ground beyond the winner stayed bare: a tessellation
+        // (cobbles) lost a fifth of its density in slivers between the two patches' stones. The loser
+        // is now kept when a squeeze of at most a third of its width clears the winner and the
+        // elements around it by the swatch's clearance (squeeze_clear), like a stone cut to fit.
+        const bool new_lost = ch.kind == PatchPlan::Change::Deformed;
+        const bool old_lost = ch.kind == PatchPlan::Change::Replaced && old[o].source >= 0;
+        if (params.blob_gap > 0.0 && (new_lost || old_lost) && is_blob(mo) && is_blob(mi)) {
+            Mesh loser = new_lost ? mi : mo;
+            std::vector<const Mesh*> others{&ch.mesh};
+            for (std::size_t o2 = 0; o2 < old.size(); ++o2)
+                if (o2 != o) others.push_back(&old[o2].mesh);
+            for (std::size_t e2 = 0; e2 < fresh.size(); ++e2)
+                if (static_cast<int>(e2) != e) others.push_back(&fresh[e2].mesh);
+            for (const Mesh& ob : obstacles) others.push_back(&ob);
+            if (squeeze_clear(loser, others, params.blob_gap, kMinSqueezedArea, kMaxSqueezePush)) {
+                squeezed[k].kind = PatchPlan::Change::Added;
+                squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
+                squeezed[k].mesh = std::move(loser);
+            }
+        }
         merged_changes[k] = std::move(ch);
     });
     for (std::size_t k = 0; k < matched.size(); ++k) {
@@ -741,6 +904,10 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         }
         plan.changes.push_back(std::move(merged_changes[k]));
     }
+    std::vector<PatchPlan::Change> squeezed_additions;
+    for (PatchPlan::Change& ch : squeezed)
+        if (!ch.mesh.faces.empty()) squeezed_additions.push_back(std::move(ch));
+    plan.squeezed = static_cast<int>(squeezed_additions.size());
     for (std::size_t e = 0; e < fresh.size(); ++e) {
         if (partner_of_new[e] >= 0) continue;
         // An element without partner joins the output unless it lies mostly on ground the output
@@ -784,8 +951,21 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         ch.kind = PatchPlan::Change::Added;
         ch.source = fresh[e].source;
         ch.mesh = fresh[e].mesh;
+        // Beyond the paper: a blob that would collide with the output may go in squeezed clear of
+        // it instead (see squeeze_clear; the fallback of an addition is always such a squeeze).
+        if (params.blob_gap > 0.0 && is_blob(m)) {
+            std::vector<const Mesh*> others;
+            for (const OldElement& oe : old) others.push_back(&oe.mesh);
+            for (std::size_t e2 = 0; e2 < fresh.size(); ++e2)
+                if (e2 != e) others.push_back(&fresh[e2].mesh);
+            for (const Mesh& ob : obstacles) others.push_back(&ob);
+            Mesh squeezed_mesh = m;
+            if (squeeze_clear(squeezed_mesh, others, params.blob_gap, kMinSqueezedArea, kMaxSqueezePush) && squeezed_mesh.vertices != m.vertices)
+                ch.fallback = std::move(squeezed_mesh);
+        }
         plan.changes.push_back(std::move(ch));
     }
+    for (PatchPlan::Change& ch : squeezed_additions) plan.changes.push_back(std::move(ch));
     return plan;
 }
 

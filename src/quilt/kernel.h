@@ -22,12 +22,16 @@ struct KernelParams {
     double prune_factor = 6.0; ///< pairs farther than this many local mean edge lengths are dismissed (Section 2.5)
     double anchor_reach = 3.0; ///< faces farther than this many mean edge lengths from the partner element must be kept
     int smoothing_rings = 2;   ///< rings around a stitch seam relaxed after joining
+    /// Beyond the paper: clearance a blob (closed genus-0 compact element) keeps when it is squeezed
+    /// clear of the partner that won the merge (see plan_patch). 0: losers are dropped, as in the paper.
+    double blob_gap = 0.0;
 };
 
 /// An element already in the output, in the kernel's frame. `id` is the caller's handle.
 struct OldElement {
     int id = -1;
     Mesh mesh;
+    int source = -1;  ///< its swatch element (-1: unknown; such an element is never squeezed, see plan_patch)
 };
 
 /// An element of the newly placed swatch, in the kernel's frame. `source` is its swatch element.
@@ -50,7 +54,8 @@ struct PatchPlan {
         int source = -1;   ///< swatch element of the result
         Mesh mesh;         ///< the resulting element
         enum Kind { Deformed, Replaced, Stitched, Added } kind = Added;
-        /// Tried when `mesh` collides with the output: the partner whole (empty: keep the old element).
+        /// Tried when `mesh` collides with the output: the partner whole (empty: keep the old element);
+        /// for an addition, the element squeezed clear of the output (see squeeze_clear).
         Mesh fallback;
     };
     /// Old elements deformed in place, replaced by their partner, or stitched with it; and new
@@ -59,6 +64,7 @@ struct PatchPlan {
     int stitch_failures = 0;
     int crowding = 0;         ///< new elements without partner left out: mostly on old ground, an old element at about the same place
     int correspondences = 0;  ///< corresponding element pairs
+    int squeezed = 0;         ///< losers of a merge kept, squeezed clear of the winner (additions at the end of `changes`)
     std::map<std::string, int> failure_reasons;  ///< why stitches failed, counted
 };
 
@@ -82,6 +88,27 @@ struct OwnAreas {
 };
 bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& overlap, const KernelParams& params, Mesh* result,
                      std::string* why = nullptr, StitchOutcome* outcome = nullptr, OwnAreas* own = nullptr);
+
+/// Beyond the paper: squeezes `m` along one axis of the plane at a time, with a smooth monotone map
+/// that leaves its far side in place, until its xy convex hull keeps `gap` from the hull of each of
+/// `others` (separating-axis test over the hulls' edge normals, deepest penetration first). The map
+/// is a bijection of the plane with a positive Jacobian, so a closed, embedded element stays one.
+/// False (and `m` unspecified) when a push would exceed `max_push` (< 1/2) of the element's width
+/// along the axis, the hull would keep less than `min_area` of its area, or 8 pushes do not clear it.
+bool squeeze_clear(Mesh& m, const std::vector<const Mesh*>& others, double gap, double min_area, double max_push);
+/// The same against hulls computed once (xy_hull), for many tries among the same elements.
+bool squeeze_clear(Mesh& m, const std::vector<std::vector<Vec2>>& other_hulls, double gap, double min_area, double max_push);
+
+/// Moves the side of `m` at `lo` along unit `axis` (xy) by `depth` (positive: inwards, a squeeze;
+/// negative: outwards, a growth), with the smooth monotone map of squeeze_clear; the side at `hi`
+/// stays. `lo` and `hi` bound `m` along the axis; |depth| < (hi - lo) / 2.
+void push_side(Mesh& m, const Vec2& axis, double lo, double hi, double depth);
+
+/// Area of a simple polygon.
+double polygon_area(const std::vector<Vec2>& polygon);
+
+/// Convex hull of the xy projection of the vertices that faces use, counter-clockwise (CGAL).
+std::vector<Vec2> xy_hull(const Mesh& m);
 
 /// A long element (a thread): its xy box more than 3 times longer than wide.
 bool is_elongated(const Mesh& m);

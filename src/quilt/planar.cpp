@@ -7,6 +7,7 @@
 #include "meshquilt/analysis.h"
 #include "meshquilt/errors.h"
 #include "meshquilt/quilt.h"
+#include "quilt/fill.h"
 #include "quilt/kernel.h"
 #include "quilt/match.h"
 #include "quilt/swatch.h"
@@ -48,6 +49,22 @@ using quilt::Clock;
 using quilt::kDensityInset;
 using quilt::kMaxOutputFaces;
 using quilt::seconds_since;
+
+// Bald spots (fill_bald_spots): an element put in keeps at least kFillMinArea of its swatch
+// element's footprint, is squeezed by at most kFillPush of its width at a time and is tried at full
+// size and at kFillScale; a spot counts when the disc of kFillWindow blob half diagonals around it is
+// less covered than the swatch.
+constexpr double kFillMinArea = 0.4;
+constexpr double kFillPush = 0.45;
+constexpr double kFillScale = 0.8;
+constexpr double kFillWindow = 3.0;
+// Joints (close_wide_joints): a side facing a joint up to kJointReach times the swatch's 90th
+// percentile grows; an element grows to at most kMaxGrowth of its swatch element's area.
+constexpr double kJointReach = 4.0;
+/// A swatch is a paving when its median joint is below this share of its median blob's size
+/// (square root of the footprint's area): cobbles 0.09, pebbles 0.5, rivets 0.4.
+constexpr double kPavingJoint = 0.2;
+constexpr double kMaxGrowth = 1.3;
 
 /// Output grid with a margin of cells around the footprint, so that placements near the border
 /// keep track of what they cover.
@@ -153,6 +170,7 @@ public:
         params_.metric.lambda = opt_.lambda;
         params_.metric.unit = sw_.mean_edge;
         params_.mu = opt_.mu;
+        params_.blob_gap = sw_.elements_disjoint ? sw_.near_gap : 0.0;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare"] += seconds_since(t0);
     }
@@ -261,7 +279,7 @@ private:
         };
         std::vector<quilt::OldElement> old;
         std::vector<int> old_ids = elements_in_rect(fx0, fy0, fx1, fy1);
-        for (int id : old_ids) old.push_back({id, elems_[static_cast<std::size_t>(id)].mesh});
+        for (int id : old_ids) old.push_back({id, elems_[static_cast<std::size_t>(id)].mesh, elems_[static_cast<std::size_t>(id)].source});
         const quilt::PatchPlan plan = quilt::plan_patch(old, fresh, overlap, params_);
         stage_seconds_["merging"] += seconds_since(t0);
         t0 = Clock::now();
@@ -284,6 +302,10 @@ private:
         using Kind = quilt::PatchPlan::Change::Kind;
         std::vector<const quilt::PatchPlan::Change*> pending;
         for (const auto& ch : plan.changes) pending.push_back(&ch);
+        // The plan's last `squeezed` changes are squeezed losers (see plan_patch): extras, not counted
+        // as avoided collisions when they do not fit.
+        const quilt::PatchPlan::Change* first_squeezed = plan.changes.data() + (plan.changes.size() - static_cast<std::size_t>(plan.squeezed));
+        auto is_squeezed = [&](const quilt::PatchPlan::Change* ch) { return ch >= first_squeezed; };
         for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
             std::vector<const quilt::PatchPlan::Change*> refused;
             for (const auto* ch : pending) {
@@ -298,11 +320,19 @@ private:
                         refused.push_back(ch);
                         continue;
                     }
-                    mesh = &ch->fallback;  // the partner whole instead of the stitched element
-                    kind = Kind::Replaced;
+                    // The partner whole instead of the stitched element; an addition squeezed to fit.
+                    mesh = &ch->fallback;
+                    if (kind != Kind::Added) kind = Kind::Replaced;
                 }
                 if (kind == Kind::Added) {
+                    // Beyond the paper: a blob keeps the swatch's clearance (a collision test alone let
+                    // pebbles crowd 5-9% denser than the swatch).
+                    if (!keeps_gap(*mesh, ch->source)) {
+                        refused.push_back(ch);
+                        continue;
+                    }
                     add_element(*mesh, ch->source);
+                    if (is_squeezed(ch) || mesh == &ch->fallback) ++report_.elements_squeezed;
                     continue;
                 }
                 const int source = ch->source >= 0 ? ch->source : elems_[static_cast<std::size_t>(ch->old_id)].source;
@@ -316,8 +346,35 @@ private:
         }
         for (const auto* ch : pending) {
             if (ch->kind == Kind::Stitched) ++report_.stitch_failures;
-            else if (ch->kind != Kind::Deformed) ++report_.collisions_avoided;
+            else if (ch->kind != Kind::Deformed && !is_squeezed(ch)) ++report_.collisions_avoided;
         }
+    }
+
+    /// A blob (genus-0 swatch element) added to the output keeps the swatch's clearance from the
+    /// elements around it; rings and threads interlock or cross, and come closer.
+    bool keeps_gap(const Mesh& m, int source, int ignore = -1) const {
+        if (source < 0 || sw_.element_genus[static_cast<std::size_t>(source)] > 0 || !(sw_.near_gap > 0.0) || quilt::is_elongated(m)) return true;
+        const Box3 box = bounding_box(m);
+        const double g = sw_.near_gap;
+        for (int id : elements_in_rect(box.min.x() - g, box.min.y() - g, box.max.x() + g, box.max.y() + g))
+            if (id != ignore && quilt::element_gap(m, box, elems_[static_cast<std::size_t>(id)].mesh, g) < g) return false;
+        return true;
+    }
+
+    /// Grid cells the triangles of `mesh` touch (by their boxes), one entry per triangle and cell.
+    std::vector<std::size_t> cells_touched(const Mesh& mesh) const {
+        std::vector<std::size_t> cells;
+        for (const Tri& f : mesh.faces) {
+            const Vec3& a = mesh.vertices[f[0]];
+            const Vec3& b = mesh.vertices[f[1]];
+            const Vec3& c = mesh.vertices[f[2]];
+            const int i0 = grid_.cell_of(std::min({a.x(), b.x(), c.x()})), i1 = grid_.cell_of(std::max({a.x(), b.x(), c.x()}));
+            const int j0 = grid_.cell_of(std::min({a.y(), b.y(), c.y()})), j1 = grid_.cell_of(std::max({a.y(), b.y(), c.y()}));
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                    if (grid_.valid(i, j)) cells.push_back(grid_.at(i, j));
+        }
+        return cells;
     }
 
     void add_element(const Mesh& mesh, int source) {
@@ -327,16 +384,7 @@ private:
         e.alive = true;
         e.collider_id = collider_.add(mesh);
         const int id = static_cast<int>(elems_.size());
-        for (const Tri& f : mesh.faces) {
-            const Vec3& a = mesh.vertices[f[0]];
-            const Vec3& b = mesh.vertices[f[1]];
-            const Vec3& c = mesh.vertices[f[2]];
-            const int i0 = grid_.cell_of(std::min({a.x(), b.x(), c.x()})), i1 = grid_.cell_of(std::max({a.x(), b.x(), c.x()}));
-            const int j0 = grid_.cell_of(std::min({a.y(), b.y(), c.y()})), j1 = grid_.cell_of(std::max({a.y(), b.y(), c.y()}));
-            for (int j = j0; j <= j1; ++j)
-                for (int i = i0; i <= i1; ++i)
-                    if (grid_.valid(i, j)) e.cells.push_back(grid_.at(i, j));
-        }
+        e.cells = cells_touched(mesh);
         std::vector<std::size_t> unique_cells = e.cells;
         std::sort(unique_cells.begin(), unique_cells.end());
         unique_cells.erase(std::unique(unique_cells.begin(), unique_cells.end()), unique_cells.end());
@@ -361,7 +409,210 @@ private:
         e.mesh = Mesh();
     }
 
+    /// Beyond the paper: bald spots left where new elements collided or lost their merges are filled
+    /// one element at a time (see quilt/fill.h). While the output's largest empty disc (xy
+    /// projection, centred in the footprint) is wider than the swatch's own and lies in ground less
+    /// covered than the swatch (a porous pattern has wide gaps of its own), the swatch blob (closed,
+    /// genus 0, not a thread; as it is or at 0.8 of its size) that covers most there, squeezed clear
+    /// of its neighbours by the swatch's clearance (squeeze_clear), goes in. A spot nothing fits is
+    /// left. Rings and threads are never used: they must interlock or continue, which a lone element
+    /// cannot.
+    void fill_bald_spots() {
+        if (!sw_.elements_disjoint || !(sw_.near_gap > 0.0)) return;
+        struct Shape {
+            int source;
+            Mesh mesh;  ///< centred on its area centroid in xy
+            double area;
+            double scale;
+        };
+        std::vector<Shape> shapes;
+        double reach = 0.0;      // the largest blob's half diagonal
+        double narrowest = 1e300;  // the smallest blob's width
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
+            const Mesh& m = sw_.elements[e];
+            if (!sw_.element_closed[e] || sw_.element_genus[e] != 0 || quilt::is_elongated(m)) continue;
+            const Vec3 c = area_centroid(m);
+            const Vec3 size = bounding_box(m).size();
+            reach = std::max(reach, 0.5 * size.head<2>().norm());
+            narrowest = std::min(narrowest, std::min(size.x(), size.y()));
+            for (const double f : {1.0, kFillScale}) {
+                Shape s{static_cast<int>(e), m, 0.0, f};
+                for (Vec3& v : s.mesh.vertices) v = Vec3(f * (v.x() - c.x()), f * (v.y() - c.y()), v.z());
+                s.area = mesh_area(s.mesh);
+                shapes.push_back(std::move(s));
+            }
+        }
+        if (shapes.empty()) return;
+        // Largest first: a try that cannot beat the best so far is skipped.
+        std::stable_sort(shapes.begin(), shapes.end(), [](const Shape& a, const Shape& b) { return a.area > b.area; });
+        auto t0 = Clock::now();
+        const double lx = sw_.box.size().x(), ly = sw_.box.size().y();
+        const double pixel = std::max(0.5 * sw_.near_gap, std::sqrt(opt_.width * opt_.height / 4e6));
+        const double mx = kDensityInset * lx, my = kDensityInset * ly;
+        quilt::Coverage swatch_cov(sw_.box.min.x(), sw_.box.min.y(), sw_.box.max.x(), sw_.box.max.y(), pixel);
+        swatch_cov.add(sw_.mesh);
+        const double swatch_share = swatch_cov.covered_share(mx, my, lx - mx, ly - my);
+        // Spots narrower than this hold no blob, however squeezed: the search stops there.
+        const double smallest_spot = std::max(quilt::largest_empty_radius(sw_.mesh, mx, my, lx - mx, ly - my, pixel),
+                                              sw_.near_gap + 0.5 * kFillScale * (1.0 - kFillPush) * narrowest);
+        quilt::Coverage cov(-reach, -reach, opt_.width + reach, opt_.height + reach, pixel);
+        for (const OutputElement& e : elems_)
+            if (e.alive) cov.add(e.mesh);
+        const int nx = cov.nx();
+        std::vector<double> d = cov.empty_distance();
+        std::vector<char> blocked(d.size(), 0);
+        for (;;) {
+            double widest = 0.0;
+            std::size_t at = 0;
+            for (int j = 0; j < cov.ny(); ++j)
+                for (int i = 0; i < nx; ++i) {
+                    const std::size_t k = static_cast<std::size_t>(j) * nx + i;
+                    if (blocked[k] || d[k] <= widest) continue;
+                    const Vec2 c = cov.centre(i, j);
+                    if (c.x() < 0 || c.y() < 0 || c.x() > opt_.width || c.y() > opt_.height) continue;
+                    widest = d[k];
+                    at = k;
+                }
+            if (widest <= smallest_spot) break;
+            const Vec2 c = cov.centre(static_cast<int>(at % nx), static_cast<int>(at / nx));
+            const int ci = static_cast<int>(at % nx), cj = static_cast<int>(at / nx), rp = static_cast<int>(std::ceil(widest / pixel));
+            auto leave = [&] {  // blocks the spot for the next searches
+                for (int j = std::max(0, cj - rp); j <= std::min(cov.ny() - 1, cj + rp); ++j)
+                    for (int i = std::max(0, ci - rp); i <= std::min(nx - 1, ci + rp); ++i)
+                        if ((cov.centre(i, j) - c).norm() <= widest) blocked[static_cast<std::size_t>(j) * nx + i] = 1;
+            };
+            if (cov.covered_share(c, kFillWindow * reach) >= swatch_share) {
+                leave();
+                continue;
+            }
+            std::vector<std::vector<Vec2>> around;
+            const double r = std::min(widest, 4.0 * reach) + 2.0 * reach;
+            for (int id : elements_in_rect(c.x() - r, c.y() - r, c.x() + r, c.y() + r))
+                around.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(id)].mesh));
+            Mesh best;
+            int best_source = -1;
+            double best_area = 0.0;
+            for (const Shape& s : shapes) {
+                if (s.area <= best_area) break;
+                Mesh placed = quilt::translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
+                if (!quilt::squeeze_clear(placed, around, sw_.near_gap, kFillMinArea / (s.scale * s.scale), kFillPush)) continue;
+                const double a = mesh_area(placed);
+                if (a <= best_area || collider_.collides(placed)) continue;
+                best = std::move(placed);
+                best_source = s.source;
+                best_area = a;
+            }
+            if (best_source < 0) {
+                leave();
+                continue;
+            }
+            cov.add(best);
+            // Distances only shrink, and only within the widest spot's radius of the new element.
+            const Box3 b = bounding_box(best);
+            const int i0 = static_cast<int>(std::floor((b.min.x() + reach) / pixel)) - rp - 1;
+            const int i1 = static_cast<int>(std::floor((b.max.x() + reach) / pixel)) + rp + 1;
+            const int j0 = static_cast<int>(std::floor((b.min.y() + reach) / pixel)) - rp - 1;
+            const int j1 = static_cast<int>(std::floor((b.max.y() + reach) / pixel)) + rp + 1;
+            const std::vector<double> local = cov.empty_distance(i0, j0, i1, j1);
+            const int w = std::min(i1, nx - 1) - std::max(i0, 0) + 1;
+            for (std::size_t k = 0; k < local.size(); ++k) {
+                const std::size_t g = static_cast<std::size_t>(std::max(j0, 0) + static_cast<int>(k) / w) * nx + std::max(i0, 0) + static_cast<int>(k) % w;
+                d[g] = std::min(d[g], local[k]);
+            }
+            add_element(best, best_source);
+            ++report_.bald_spots_filled;
+        }
+        stage_seconds_["bald spots"] += seconds_since(t0);
+    }
+
+    /// Beyond the paper: joints. Where two patches' elements meet, the joints between blobs come out
+    /// wider than the swatch's (two tessellations do not fit). Each blob side (hull edge, see
+    /// hull_sides) that faces a joint wider than the swatch's 90th percentile (and narrower than
+    /// kJointReach times it: wider ground is a bald spot) grows into it, leaving the swatch's median
+    /// joint, by the smooth map of push_side; the element must stay within kMaxGrowth of its swatch
+    /// element's area, collide with nothing and keep the clearance, or the growth is halved (twice)
+    /// and then dropped. A porous pattern (pebbles) has a wide 90th percentile, and barely grows.
+    void close_wide_joints() {
+        if (!sw_.elements_disjoint || !(sw_.near_gap > 0.0)) return;
+        auto t0 = Clock::now();
+        std::vector<std::vector<Vec2>> swatch_hulls;
+        for (const Mesh& m : sw_.elements) swatch_hulls.push_back(quilt::xy_hull(m));
+        auto is_blob = [&](int source) {
+            const auto s = static_cast<std::size_t>(source);
+            return source >= 0 && sw_.element_closed[s] && sw_.element_genus[s] == 0 && !quilt::is_elongated(sw_.elements[s]);
+        };
+        double reach = 0.0;
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e)
+            if (is_blob(static_cast<int>(e))) reach = std::max(reach, 0.5 * bounding_box(sw_.elements[e]).size().head<2>().norm());
+        std::vector<double> joints;
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
+            if (!is_blob(static_cast<int>(e))) continue;
+            std::vector<std::vector<Vec2>> others;
+            for (std::size_t o = 0; o < swatch_hulls.size(); ++o)
+                if (o != e) others.push_back(swatch_hulls[o]);
+            for (std::size_t s : quilt::hull_sides(swatch_hulls[e])) {
+                const double f = quilt::side_clearance(swatch_hulls[e], s, others, reach);
+                if (f < reach) joints.push_back(f);
+            }
+        }
+        if (joints.size() < 8) return;
+        std::sort(joints.begin(), joints.end());
+        const double typical = joints[joints.size() / 2], wide = joints[static_cast<std::size_t>(0.9 * static_cast<double>(joints.size() - 1))];
+        const double limit = kJointReach * wide;
+        // Only a paving (cobbles, tiles, flagstones) has joints to close: narrow against its elements.
+        std::vector<double> sizes;
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e)
+            if (is_blob(static_cast<int>(e))) sizes.push_back(std::sqrt(quilt::polygon_area(swatch_hulls[e])));
+        std::sort(sizes.begin(), sizes.end());
+        if (typical > kPavingJoint * sizes[sizes.size() / 2]) return;
+        std::vector<int> ids;
+        for (std::size_t id = 0; id < elems_.size(); ++id)
+            if (elems_[id].alive && is_blob(elems_[id].source)) ids.push_back(static_cast<int>(id));
+        for (int id : ids) {
+            const OutputElement& el = elems_[static_cast<std::size_t>(id)];
+            const Box3 box = bounding_box(el.mesh);
+            const Vec3 mid = 0.5 * (box.min + box.max);
+            if (mid.x() < -reach || mid.y() < -reach || mid.x() > opt_.width + reach || mid.y() > opt_.height + reach) continue;
+            const std::vector<Vec2> hull = quilt::xy_hull(el.mesh);
+            std::vector<std::vector<Vec2>> around;
+            for (int o : elements_in_rect(box.min.x() - limit, box.min.y() - limit, box.max.x() + limit, box.max.y() + limit))
+                if (o != id) around.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(o)].mesh));
+            struct Grow { Vec2 inward; double by; };
+            std::vector<Grow> grows;
+            for (std::size_t s : quilt::hull_sides(hull)) {
+                const double f = quilt::side_clearance(hull, s, around, limit);
+                if (f <= wide || f >= limit) continue;
+                const Vec2 e = hull[(s + 1) % hull.size()] - hull[s];
+                grows.push_back({Vec2(-e.y(), e.x()).normalized(), f - typical});
+            }
+            if (grows.empty()) continue;
+            const double source_area = mesh_area(sw_.elements[static_cast<std::size_t>(el.source)]);
+            for (double share = 1.0; share > 0.2; share *= 0.5) {
+                Mesh grown = el.mesh;
+                for (const Grow& g : grows) {
+                    double lo = 1e300, hi = -1e300;
+                    for (const Vec3& v : grown.vertices) {
+                        lo = std::min(lo, g.inward.dot(v.head<2>()));
+                        hi = std::max(hi, g.inward.dot(v.head<2>()));
+                    }
+                    quilt::push_side(grown, g.inward, lo, hi, -std::min(share * g.by, 0.3 * (hi - lo)));
+                }
+                if (mesh_area(grown) > kMaxGrowth * source_area) continue;
+                if (collider_.collides(grown, {el.collider_id}) || !keeps_gap(grown, el.source, id)) continue;
+                const int source = el.source;
+                remove_element(id);
+                add_element(grown, source);
+                ++report_.joints_closed;
+                break;
+            }
+        }
+        stage_seconds_["joints"] += seconds_since(t0);
+    }
+
     void finish(QuiltResult& result) {
+        fill_bald_spots();
+        // Twice: a side held back by the growth cap or a neighbour's growth gets a second chance.
+        for (int pass = 0; pass < 2; ++pass) close_wide_joints();
         auto t0 = Clock::now();
         // Keep elements whose centroid lies in the footprint; remove those that are not whole.
         std::vector<int> kept;

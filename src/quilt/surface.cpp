@@ -826,7 +826,7 @@ private:
                     faces = &ch->fallback.faces;
                     anchors = &c.fallback_anchors;
                     embedded = &c.fallback;
-                    kind = Kind::Replaced;
+                    if (kind != Kind::Added) kind = Kind::Replaced;  // an addition's fallback is the element squeezed
                 }
                 int source = ch->source;
                 if (kind != Kind::Added) {

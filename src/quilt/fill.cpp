@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "quilt/fill.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshquilt::quilt {
+
+namespace {
+
+/// One-dimensional squared distance transform of sampled function `f` (lower envelope of parabolas,
+/// Felzenszwalb and Huttenlocher, "Distance Transforms of Sampled Functions", 2012).
+void distance_1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v, std::vector<double>& z) {
+    const int n = static_cast<int>(f.size());
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    int k = -1;
+    for (int q = 0; q < n; ++q) {
+        if (f[q] == inf) continue;  // a parabola at infinity never forms the envelope
+        while (k >= 0) {
+            const double s = ((f[q] + q * q) - (f[v[k]] + v[k] * v[k])) / (2.0 * (q - v[k]));
+            if (s > z[k]) break;
+            --k;
+        }
+        ++k;
+        v[k] = q;
+        z[k] = k == 0 ? -inf : ((f[q] + q * q) - (f[v[k - 1]] + v[k - 1] * v[k - 1])) / (2.0 * (q - v[k - 1]));
+        z[k + 1] = inf;
+    }
+    if (k < 0) {
+        std::fill(d.begin(), d.end(), inf);
+        return;
+    }
+    int j = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[j + 1] < q) ++j;
+        d[q] = (q - v[j]) * (q - v[j]) + f[v[j]];
+    }
+}
+
+}  // namespace
+
+Coverage::Coverage(double x0, double y0, double x1, double y1, double pixel)
+    : x0_(x0), y0_(y0), pixel_(pixel),
+      nx_(std::max(1, static_cast<int>(std::ceil((x1 - x0) / pixel)))),
+      ny_(std::max(1, static_cast<int>(std::ceil((y1 - y0) / pixel)))),
+      covered_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 0) {}
+
+void Coverage::add(const Mesh& m) {
+    for (const Tri& f : m.faces) {
+        const Vec3& p = m.vertices[f[0]];
+        const Vec3& q = m.vertices[f[1]];
+        const Vec3& r = m.vertices[f[2]];
+        const double area = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+        const int i0 = std::max(0, static_cast<int>(std::floor((std::min({p.x(), q.x(), r.x()}) - x0_) / pixel_)));
+        const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((std::max({p.x(), q.x(), r.x()}) - x0_) / pixel_)));
+        const int j0 = std::max(0, static_cast<int>(std::floor((std::min({p.y(), q.y(), r.y()}) - y0_) / pixel_)));
+        const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((std::max({p.y(), q.y(), r.y()}) - y0_) / pixel_)));
+        if (i0 > i1 || j0 > j1 || std::abs(area) < 1e-300) continue;
+        bool any = false;
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) {
+                const Vec2 c = centre(i, j);
+                const double w0 = (q.x() - c.x()) * (r.y() - c.y()) - (q.y() - c.y()) * (r.x() - c.x());
+                const double w1 = (r.x() - c.x()) * (p.y() - c.y()) - (r.y() - c.y()) * (p.x() - c.x());
+                const double w2 = (p.x() - c.x()) * (q.y() - c.y()) - (p.y() - c.y()) * (q.x() - c.x());
+                if (area > 0 ? (w0 >= 0 && w1 >= 0 && w2 >= 0) : (w0 <= 0 && w1 <= 0 && w2 <= 0)) {
+                    covered_[static_cast<std::size_t>(j) * nx_ + i] = 1;
+                    any = true;
+                }
+            }
+        if (!any) {
+            const double cx = (p.x() + q.x() + r.x()) / 3.0, cy = (p.y() + q.y() + r.y()) / 3.0;
+            const int i = static_cast<int>(std::floor((cx - x0_) / pixel_)), j = static_cast<int>(std::floor((cy - y0_) / pixel_));
+            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) covered_[static_cast<std::size_t>(j) * nx_ + i] = 1;
+        }
+    }
+}
+
+std::vector<double> Coverage::empty_distance() const { return empty_distance(0, 0, nx_ - 1, ny_ - 1); }
+
+std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) const {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    i0 = std::max(i0, 0);
+    j0 = std::max(j0, 0);
+    i1 = std::min(i1, nx_ - 1);
+    j1 = std::min(j1, ny_ - 1);
+    const int w = i1 - i0 + 1, h = j1 - j0 + 1;
+    if (w <= 0 || h <= 0) return {};
+    const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    std::vector<double> sq(n);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) sq[static_cast<std::size_t>(j) * w + i] = covered(i0 + i, j0 + j) ? 0.0 : inf;
+    const int longest = std::max(w, h);
+    std::vector<double> f, d;
+    std::vector<double> z(static_cast<std::size_t>(longest) + 1);
+    std::vector<int> v(static_cast<std::size_t>(longest));
+    // Columns, then rows.
+    f.resize(static_cast<std::size_t>(h));
+    d.resize(static_cast<std::size_t>(h));
+    for (int i = 0; i < w; ++i) {
+        for (int j = 0; j < h; ++j) f[static_cast<std::size_t>(j)] = sq[static_cast<std::size_t>(j) * w + i];
+        distance_1d(f, d, v, z);
+        for (int j = 0; j < h; ++j) sq[static_cast<std::size_t>(j) * w + i] = d[static_cast<std::size_t>(j)];
+    }
+    f.resize(static_cast<std::size_t>(w));
+    d.resize(static_cast<std::size_t>(w));
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) f[static_cast<std::size_t>(i)] = sq[static_cast<std::size_t>(j) * w + i];
+        distance_1d(f, d, v, z);
+        for (int i = 0; i < w; ++i) sq[static_cast<std::size_t>(j) * w + i] = d[static_cast<std::size_t>(i)];
+    }
+    std::vector<double> out(n);
+    for (std::size_t k = 0; k < n; ++k) out[k] = sq[k] == inf ? std::numeric_limits<double>::max() : pixel_ * std::sqrt(sq[k]);
+    return out;
+}
+
+double Coverage::covered_share(const Vec2& c, double radius) const {
+    const int i0 = std::max(0, static_cast<int>(std::floor((c.x() - radius - x0_) / pixel_)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((c.x() + radius - x0_) / pixel_)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((c.y() - radius - y0_) / pixel_)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((c.y() + radius - y0_) / pixel_)));
+    long in = 0, hit = 0;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+            if ((centre(i, j) - c).squaredNorm() <= radius * radius) {
+                ++in;
+                hit += covered(i, j);
+            }
+    return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
+}
+
+double Coverage::covered_share(double x0, double y0, double x1, double y1) const {
+    long in = 0, hit = 0;
+    for (int j = 0; j < ny_; ++j)
+        for (int i = 0; i < nx_; ++i) {
+            const Vec2 c = centre(i, j);
+            if (c.x() < x0 || c.x() > x1 || c.y() < y0 || c.y() > y1) continue;
+            ++in;
+            hit += covered(i, j);
+        }
+    return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
+}
+
+std::vector<std::size_t> hull_sides(const std::vector<Vec2>& hull) {
+    double perimeter = 0.0;
+    for (std::size_t i = 0; i < hull.size(); ++i) perimeter += (hull[(i + 1) % hull.size()] - hull[i]).norm();
+    std::vector<std::size_t> sides;
+    for (std::size_t i = 0; i < hull.size(); ++i)
+        if ((hull[(i + 1) % hull.size()] - hull[i]).norm() >= 0.05 * perimeter) sides.push_back(i);
+    return sides;
+}
+
+double side_clearance(const std::vector<Vec2>& hull, std::size_t edge, const std::vector<std::vector<Vec2>>& others, double limit) {
+    const Vec2 a = hull[edge], b = hull[(edge + 1) % hull.size()];
+    const Vec2 e = b - a;
+    if (!(e.norm() > 0.0)) return limit;
+    const Vec2 n = Vec2(e.y(), -e.x()).normalized();  // outward for a counter-clockwise polygon
+    double best = limit;
+    for (int k = 0; k < 5; ++k) {
+        const Vec2 o = a + (0.1 + 0.2 * k) * e;
+        for (const auto& poly : others)
+            for (std::size_t i = 0; i < poly.size(); ++i) {
+                const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
+                // o + t n = p + u (q - p): Cramer's rule.
+                const Vec2 d = q - p;
+                const double den = n.x() * (-d.y()) - n.y() * (-d.x());
+                if (std::abs(den) < 1e-300) continue;
+                const Vec2 r = p - o;
+                const double t = (r.x() * (-d.y()) - r.y() * (-d.x())) / den;
+                const double u = (n.x() * r.y() - n.y() * r.x()) / den;
+                if (t >= 0.0 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
+            }
+    }
+    return best;
+}
+
+double largest_empty_radius(const Mesh& m, double x0, double y0, double x1, double y1, double pixel) {
+    const Box3 b = bounding_box(m);
+    if (b.empty()) return 0.0;
+    Coverage cov(b.min.x(), b.min.y(), b.max.x(), b.max.y(), pixel);
+    cov.add(m);
+    const std::vector<double> d = cov.empty_distance();
+    double best = 0.0;
+    for (int j = 0; j < cov.ny(); ++j)
+        for (int i = 0; i < cov.nx(); ++i) {
+            const Vec2 c = cov.centre(i, j);
+            if (c.x() >= x0 && c.x() <= x1 && c.y() >= y0 && c.y() <= y1) best = std::max(best, d[static_cast<std::size_t>(j) * cov.nx() + i]);
+        }
+    return best;
+}
+
+}  // namespace meshquilt::quilt

@@ -1,0 +1,167 @@
+// labels: unit
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Squeezing and growing blobs (quilt/kernel.h: squeeze_clear, push_side) and the coverage raster
+// that finds bald spots and wide joints (quilt/fill.h).
+
+#include "core/intersect.h"
+#include "quilt/fill.h"
+#include "quilt/kernel.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace mq = meshquilt;
+namespace quilt = meshquilt::quilt;
+using mq::Mesh;
+using mq::Vec2;
+using mq::Vec3;
+namespace shapes = mq::test::shapes;
+
+namespace {
+
+// A block of n x n x 1 unit voxels scaled by `s` and moved to `offset`: a flat stone.
+Mesh block(int n, double s, const Vec3& offset) {
+    std::vector<std::array<int, 3>> cells;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) cells.push_back({i, j, 0});
+    Mesh m = shapes::voxels(cells);
+    for (Vec3& v : m.vertices) v = s * v + offset;
+    return m;
+}
+
+}  // namespace
+
+TEST(SqueezeClear, PushesAStoneClearOfItsNeighbourAndKeepsItWhole) {
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));  // [0, 2] x [0, 2]
+    Mesh b = block(4, 0.5, Vec3(1.7, 0.2, 0));    // overlaps a by 0.3 along x
+    const Mesh before = b;
+    ASSERT_TRUE(quilt::squeeze_clear(b, std::vector<const Mesh*>{&a}, 0.1, 0.6, 1.0 / 3.0));
+    const mq::Box3 box = mq::bounding_box(b), box0 = mq::bounding_box(before);
+    EXPECT_NEAR(box.min.x(), 2.1, 1e-9);              // the swatch's clearance from a, exactly
+    EXPECT_NEAR(box.max.x(), box0.max.x(), 1e-12);    // the far side stays
+    EXPECT_NEAR(box.min.y(), box0.min.y(), 1e-12);    // nothing moves across the push
+    EXPECT_NEAR(box.max.z(), box0.max.z(), 1e-12);
+    EXPECT_EQ(b.faces, before.faces);
+    EXPECT_TRUE(quilt::is_closed_oriented(b));
+    EXPECT_EQ(mq::count_self_intersections(b), 0);
+    mq::ElementCollider collider;
+    collider.add(a);
+    EXPECT_FALSE(collider.collides(b));
+    // Orientation kept: every face's xy winding has the sign it had (the map's Jacobian is positive).
+    for (std::size_t f = 0; f < b.faces.size(); ++f) {
+        auto signed_area = [&](const Mesh& m) {
+            const auto& t = m.faces[f];
+            const Vec3 p = m.vertices[t[0]], q = m.vertices[t[1]], r = m.vertices[t[2]];
+            return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+        };
+        const double s0 = signed_area(before), s1 = signed_area(b);
+        if (std::abs(s0) > 1e-12) EXPECT_GT(s0 * s1, 0.0) << "face " << f;
+    }
+}
+
+TEST(SqueezeClear, ClearsSeveralNeighboursAndLeavesAFreeStoneAlone) {
+    const Mesh left = block(4, 0.5, Vec3(0, 0, 0));
+    const Mesh below = block(4, 0.5, Vec3(2.2, -1.8, 0));
+    Mesh b = block(4, 0.5, Vec3(1.9, 0.0, 0));  // overlaps `left` by 0.1 and `below` by 0.2
+    ASSERT_TRUE(quilt::squeeze_clear(b, std::vector<const Mesh*>{&left, &below}, 0.05, 0.6, 1.0 / 3.0));
+    const mq::Box3 box = mq::bounding_box(b);
+    EXPECT_GE(box.min.x(), 2.05 - 1e-9);
+    EXPECT_GE(box.min.y(), 0.25 - 1e-9);
+    // Already clear: unchanged.
+    Mesh free = block(4, 0.5, Vec3(5, 5, 0));
+    const Mesh free0 = free;
+    ASSERT_TRUE(quilt::squeeze_clear(free, std::vector<const Mesh*>{&left, &below}, 0.05, 0.6, 1.0 / 3.0));
+    EXPECT_EQ(free.vertices, free0.vertices);
+}
+
+TEST(SqueezeClear, RefusesAPushBeyondItsLimits) {
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));
+    Mesh deep = block(4, 0.5, Vec3(1.0, 0.0, 0));  // overlaps by half its width
+    EXPECT_FALSE(quilt::squeeze_clear(deep, std::vector<const Mesh*>{&a}, 0.1, 0.6, 1.0 / 3.0));
+    Mesh shallow = block(4, 0.5, Vec3(1.5, 0.0, 0));  // a push of 0.6 of 2 is allowed, 30% of the area is not
+    EXPECT_FALSE(quilt::squeeze_clear(shallow, std::vector<const Mesh*>{&a}, 0.1, 0.8, 0.45));
+    shallow = block(4, 0.5, Vec3(1.5, 0.0, 0));
+    EXPECT_TRUE(quilt::squeeze_clear(shallow, std::vector<const Mesh*>{&a}, 0.1, 0.6, 0.45));
+}
+
+TEST(PushSide, GrowsASideOutwardAndKeepsTheFarSide) {
+    Mesh m = block(4, 0.5, Vec3(0, 0, 0));
+    quilt::push_side(m, Vec2(-1, 0), -2.0, 0.0, -0.3);  // axis -x: the side at x = 2 moves out by 0.3
+    const mq::Box3 box = mq::bounding_box(m);
+    EXPECT_NEAR(box.max.x(), 2.3, 1e-12);
+    EXPECT_NEAR(box.min.x(), 0.0, 1e-12);
+    EXPECT_TRUE(quilt::is_closed_oriented(m));
+    EXPECT_EQ(mq::count_self_intersections(m), 0);
+}
+
+TEST(Coverage, DistanceTransformIsExact) {
+    // Random small triangles; every pixel's distance is compared with a brute-force search.
+    quilt::Coverage cov(0.0, 0.0, 6.0, 4.0, 0.1);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> x(0.0, 6.0), y(0.0, 4.0);
+    Mesh m;
+    for (int k = 0; k < 12; ++k) {
+        const Vec3 c(x(rng), y(rng), 0.0);
+        const int base = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(c);
+        m.vertices.push_back(c + Vec3(0.25, 0.0, 0.0));
+        m.vertices.push_back(c + Vec3(0.0, 0.25, 0.0));
+        m.faces.push_back({base, base + 1, base + 2});
+    }
+    cov.add(m);
+    const std::vector<double> d = cov.empty_distance();
+    std::vector<Vec2> covered;
+    for (int j = 0; j < cov.ny(); ++j)
+        for (int i = 0; i < cov.nx(); ++i)
+            if (cov.covered(i, j)) covered.push_back(cov.centre(i, j));
+    ASSERT_GT(covered.size(), 12u);
+    for (int j = 0; j < cov.ny(); ++j)
+        for (int i = 0; i < cov.nx(); ++i) {
+            double best = std::numeric_limits<double>::infinity();
+            for (const Vec2& p : covered) best = std::min(best, (p - cov.centre(i, j)).norm());
+            ASSERT_NEAR(d[static_cast<std::size_t>(j) * cov.nx() + i], best, 1e-9) << i << "," << j;
+        }
+    // A window holding every covered pixel within the spot's reach agrees with the whole raster there.
+    const std::vector<double> w = cov.empty_distance(10, 5, 40, 30);
+    for (int j = 5; j <= 30; ++j)
+        for (int i = 10; i <= 40; ++i) EXPECT_GE(w[static_cast<std::size_t>(j - 5) * 31 + (i - 10)], d[static_cast<std::size_t>(j) * cov.nx() + i] - 1e-12);
+    // Nothing covered: every distance is "infinite".
+    const quilt::Coverage empty(0.0, 0.0, 1.0, 1.0, 0.1);
+    for (double v : empty.empty_distance()) EXPECT_EQ(v, std::numeric_limits<double>::max());
+}
+
+TEST(Coverage, LargestEmptyDiscAndCoveredShare) {
+    // Two 1 x 1 stones 1.0 apart along x: the widest empty disc between them has radius 0.5.
+    const Mesh m = shapes::concat(block(2, 0.5, Vec3(0, 0, 0)), block(2, 0.5, Vec3(2, 0, 0)));
+    const double r = quilt::largest_empty_radius(m, 1.2, 0.2, 1.8, 0.8, 0.02);
+    EXPECT_NEAR(r, 0.5, 0.03);
+    quilt::Coverage cov(0.0, 0.0, 3.0, 1.0, 0.02);
+    cov.add(m);
+    EXPECT_NEAR(cov.covered_share(0.0, 0.0, 3.0, 1.0), 2.0 / 3.0, 0.02);
+    EXPECT_NEAR(cov.covered_share(Vec2(1.5, 0.5), 0.4), 0.0, 1e-12);
+}
+
+TEST(HullSides, ClearanceAlongEachSide) {
+    const std::vector<Vec2> square = quilt::xy_hull(block(2, 0.5, Vec3(0, 0, 0)));  // [0, 1]^2
+    const std::vector<std::vector<Vec2>> others{quilt::xy_hull(block(2, 0.5, Vec3(1.5, 0.2, 0)))};
+    const std::vector<std::size_t> sides = quilt::hull_sides(square);
+    ASSERT_EQ(sides.size(), 4u);
+    int facing = 0;
+    for (std::size_t s : sides) {
+        const Vec2 a = square[s], b = square[(s + 1) % square.size()];
+        const double f = quilt::side_clearance(square, s, others, 10.0);
+        if (a.x() == 1.0 && b.x() == 1.0) {  // the side facing the other stone
+            EXPECT_NEAR(f, 0.5, 1e-12);
+            ++facing;
+        } else {
+            EXPECT_EQ(f, 10.0);
+        }
+    }
+    EXPECT_EQ(facing, 1);
+}
