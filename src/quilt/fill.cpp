@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "quilt/fill.h"
 
+#include "quilt/kernel.h"
+#include "quilt/swatch.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -44,13 +47,19 @@ Coverage::Coverage(double x0, double y0, double x1, double y1, double pixel)
     : x0_(x0), y0_(y0), pixel_(pixel),
       nx_(std::max(1, static_cast<int>(std::ceil((x1 - x0) / pixel)))),
       ny_(std::max(1, static_cast<int>(std::ceil((y1 - y0) / pixel)))),
-      covered_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 0) {}
+      covered_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 0),
+      area_(covered_.size(), 0.0) {}
 
 void Coverage::add(const Mesh& m) {
     for (const Tri& f : m.faces) {
         const Vec3& p = m.vertices[f[0]];
         const Vec3& q = m.vertices[f[1]];
         const Vec3& r = m.vertices[f[2]];
+        {
+            const double cx = (p.x() + q.x() + r.x()) / 3.0, cy = (p.y() + q.y() + r.y()) / 3.0;
+            const int i = column(cx), j = row(cy);
+            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) area_[static_cast<std::size_t>(j) * nx_ + i] += 0.5 * (q - p).cross(r - p).norm();
+        }
         const double area = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
         const int i0 = std::max(0, static_cast<int>(std::floor((std::min({p.x(), q.x(), r.x()}) - x0_) / pixel_)));
         const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((std::max({p.x(), q.x(), r.x()}) - x0_) / pixel_)));
@@ -75,6 +84,11 @@ void Coverage::add(const Mesh& m) {
             if (i >= 0 && j >= 0 && i < nx_ && j < ny_) covered_[static_cast<std::size_t>(j) * nx_ + i] = 1;
         }
     }
+}
+
+void Coverage::cover_outside(const Coverage& mask) {
+    for (std::size_t k = 0; k < covered_.size() && k < mask.covered_.size(); ++k)
+        if (!mask.covered_[k]) covered_[k] = 1;
 }
 
 std::vector<double> Coverage::empty_distance() const { return empty_distance(0, 0, nx_ - 1, ny_ - 1); }
@@ -130,6 +144,20 @@ double Coverage::covered_share(const Vec2& c, double radius) const {
     return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
 }
 
+double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask) const {
+    const int i0 = std::max(0, column(c.x() - radius)), i1 = std::min(nx_ - 1, column(c.x() + radius));
+    const int j0 = std::max(0, row(c.y() - radius)), j1 = std::min(ny_ - 1, row(c.y() + radius));
+    long in = 0;
+    double area = 0.0;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+            if ((!mask || mask->covered(i, j)) && (centre(i, j) - c).squaredNorm() <= radius * radius) {
+                ++in;
+                area += area_[static_cast<std::size_t>(j) * nx_ + i];
+            }
+    return in > 0 ? area / (static_cast<double>(in) * pixel_ * pixel_) : 0.0;
+}
+
 double Coverage::covered_share(double x0, double y0, double x1, double y1) const {
     long in = 0, hit = 0;
     for (int j = 0; j < ny_; ++j)
@@ -140,6 +168,108 @@ double Coverage::covered_share(double x0, double y0, double x1, double y1) const
             hit += covered(i, j);
         }
     return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
+}
+
+FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area) {
+    FillSetup s;
+    s.sparse = sparse;
+    s.min_area = min_area;
+    if (!sw.elements_disjoint || !(sw.near_gap > 0.0)) return s;
+    double narrowest = 1e300;
+    for (std::size_t e = 0; e < sw.elements.size(); ++e) {
+        const Mesh& m = sw.elements[e];
+        if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(m)) continue;
+        const Vec3 c = area_centroid(m);
+        const Vec3 size = bounding_box(m).size();
+        s.reach = std::max(s.reach, 0.5 * size.head<2>().norm());
+        narrowest = std::min(narrowest, std::min(size.x(), size.y()));
+        for (const double f : {1.0, kFillScale}) {
+            FillSetup::Shape shape{static_cast<int>(e), m, 0.0, f, mesh_area(m)};
+            for (Vec3& v : shape.mesh.vertices) v = Vec3(f * (v.x() - c.x()), f * (v.y() - c.y()), v.z());
+            shape.area = mesh_area(shape.mesh);
+            s.shapes.push_back(std::move(shape));
+        }
+    }
+    if (s.shapes.empty()) return s;
+    // Largest first: a try that cannot beat the best so far is skipped.
+    std::stable_sort(s.shapes.begin(), s.shapes.end(), [](const FillSetup::Shape& a, const FillSetup::Shape& b) { return a.area > b.area; });
+    s.gap = sw.near_gap;
+    s.pixel = std::max(0.5 * sw.near_gap, min_pixel);
+    const double lx = sw.box.size().x(), ly = sw.box.size().y();
+    const double mx = kDensityInset * lx, my = kDensityInset * ly;
+    s.swatch_density = window_density(sw.mesh, mx, my, lx - mx, ly - my);
+    s.smallest_spot = std::max(largest_empty_radius(sw.mesh, mx, my, lx - mx, ly - my, s.pixel),
+                               sw.near_gap + 0.5 * kFillScale * (1.0 - kFillPush) * narrowest);
+    return s;
+}
+
+int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(const Vec2&)>& may_centre,
+               const std::function<double(const Vec2&, double)>& density,
+               const std::function<std::vector<std::vector<Vec2>>(const Vec2&, double)>& around,
+               const std::function<bool(const Mesh&, int)>& fits, const std::function<void(const Mesh&, int)>& add) {
+    if (setup.shapes.empty()) return 0;
+    const int nx = cov.nx(), ny = cov.ny();
+    const double pixel = cov.pixel();
+    std::vector<double> d = cov.empty_distance();
+    std::vector<char> allowed(d.size(), 0);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) allowed[static_cast<std::size_t>(j) * nx + i] = may_centre(cov.centre(i, j)) ? 1 : 0;
+    int added = 0;
+    for (;;) {
+        double widest = 0.0;
+        std::size_t at = 0;
+        for (std::size_t k = 0; k < d.size(); ++k)
+            if (allowed[k] && d[k] > widest) {
+                widest = d[k];
+                at = k;
+            }
+        if (widest <= setup.smallest_spot) break;
+        const int ci = static_cast<int>(at % static_cast<std::size_t>(nx)), cj = static_cast<int>(at / static_cast<std::size_t>(nx));
+        const Vec2 c = cov.centre(ci, cj);
+        const int rp = static_cast<int>(std::ceil(std::min(widest, 1e6 * pixel) / pixel));
+        auto leave = [&] {  // no more tries centred in this spot
+            for (int j = std::max(0, cj - rp); j <= std::min(ny - 1, cj + rp); ++j)
+                for (int i = std::max(0, ci - rp); i <= std::min(nx - 1, ci + rp); ++i)
+                    if ((cov.centre(i, j) - c).norm() <= widest) allowed[static_cast<std::size_t>(j) * nx + i] = 0;
+            allowed[at] = 0;
+        };
+        if (density(c, kFillWindow * setup.reach) >= setup.sparse * setup.swatch_density) {
+            leave();
+            continue;
+        }
+        const std::vector<std::vector<Vec2>> hulls = around(c, std::min(widest, 4.0 * setup.reach) + 2.0 * setup.reach);
+        Mesh best;
+        int best_source = -1;
+        double best_area = 0.0;
+        for (const FillSetup::Shape& s : setup.shapes) {
+            if (s.area <= best_area) break;
+            Mesh placed = translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
+            if (!squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
+            const double a = mesh_area(placed);
+            if (a <= best_area || a < setup.min_area * s.swatch_area || !fits(placed, s.source)) continue;
+            best = std::move(placed);
+            best_source = s.source;
+            best_area = a;
+        }
+        if (best_source < 0) {
+            leave();
+            continue;
+        }
+        add(best, best_source);
+        ++added;
+        cov.add(best);
+        // Distances only shrink, and only within the widest spot's radius of the new element.
+        const Box3 b = bounding_box(best);
+        const int i0 = cov.column(b.min.x()) - rp - 1, i1 = cov.column(b.max.x()) + rp + 1;
+        const int j0 = cov.row(b.min.y()) - rp - 1, j1 = cov.row(b.max.y()) + rp + 1;
+        const std::vector<double> local = cov.empty_distance(i0, j0, i1, j1);
+        const int w = std::min(i1, nx - 1) - std::max(i0, 0) + 1;
+        for (std::size_t k = 0; k < local.size(); ++k) {
+            const std::size_t g = static_cast<std::size_t>(std::max(j0, 0) + static_cast<int>(k) / w) * nx + std::max(i0, 0) + static_cast<int>(k) % w;
+            d[g] = std::min(d[g], local[k]);
+        }
+    }
+    return added;
 }
 
 std::vector<std::size_t> hull_sides(const std::vector<Vec2>& hull) {

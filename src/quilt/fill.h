@@ -7,9 +7,20 @@
 
 #include "meshquilt/mesh.h"
 
+#include <cmath>
+#include <functional>
 #include <vector>
 
 namespace meshquilt::quilt {
+
+struct SwatchData;
+
+// A blob put into a bald spot is squeezed by at most kFillPush of its width at a time and is tried
+// at full size and at kFillScale; a spot counts when the disc of kFillWindow blob half-diagonals
+// around it is sparser than the swatch (FillSetup::sparse).
+inline constexpr double kFillPush = 0.45;
+inline constexpr double kFillScale = 0.8;
+inline constexpr double kFillWindow = 3.0;
 
 /// What the xy projections of meshes cover, on a raster of square pixels over a rectangle.
 class Coverage {
@@ -17,8 +28,13 @@ public:
     Coverage(double x0, double y0, double x1, double y1, double pixel);
 
     /// Marks the pixels whose centres the projection of a face of `m` covers (a face smaller than
-    /// a pixel marks the pixel of its centroid; vertical faces cover nothing).
+    /// a pixel marks the pixel of its centroid; vertical faces cover nothing), and adds each face's
+    /// area to the pixel of its centroid.
     void add(const Mesh& m);
+
+    /// Marks every pixel that `mask` (a raster of the same rectangle and pixel) does not cover, so
+    /// that distances end there (ground beyond a surface patch holds elements the frame cannot show).
+    void cover_outside(const Coverage& mask);
 
     /// Per pixel, the distance from its centre to the nearest covered pixel centre (0 on covered
     /// pixels; a huge value when nothing is covered). Exact Euclidean distance transform (Felzenszwalb
@@ -30,12 +46,18 @@ public:
 
     /// Share of the pixels with centres in the disc (`c`, `radius`) that are covered (0 without any).
     [[nodiscard]] double covered_share(const Vec2& c, double radius) const;
+    /// Face area (by centroid, see add) per unit area of the pixels with centres in the disc; with
+    /// `mask` (a raster of the same rectangle and pixel), of those pixels that it covers.
+    [[nodiscard]] double area_density(const Vec2& c, double radius, const Coverage* mask = nullptr) const;
     /// Share of the pixels with centres in [x0, x1] x [y0, y1] that are covered.
     [[nodiscard]] double covered_share(double x0, double y0, double x1, double y1) const;
 
     [[nodiscard]] int nx() const { return nx_; }
     [[nodiscard]] int ny() const { return ny_; }
     [[nodiscard]] double pixel() const { return pixel_; }
+    /// Pixel index of a coordinate (may lie outside [0, nx) x [0, ny)).
+    [[nodiscard]] int column(double x) const { return static_cast<int>(std::floor((x - x0_) / pixel_)); }
+    [[nodiscard]] int row(double y) const { return static_cast<int>(std::floor((y - y0_) / pixel_)); }
     [[nodiscard]] Vec2 centre(int i, int j) const { return {x0_ + (i + 0.5) * pixel_, y0_ + (j + 0.5) * pixel_}; }
     [[nodiscard]] bool covered(int i, int j) const { return covered_[static_cast<std::size_t>(j) * nx_ + i] != 0; }
 
@@ -43,7 +65,49 @@ private:
     double x0_, y0_, pixel_;
     int nx_, ny_;
     std::vector<char> covered_;
+    std::vector<double> area_;
 };
+
+/// What the bald-spot filler needs of a swatch, in the swatch's units.
+struct FillSetup {
+    struct Shape {
+        int source = -1;  ///< swatch element
+        Mesh mesh;        ///< centred on its area centroid in xy, possibly scaled by `scale` in xy
+        double area = 0.0;
+        double scale = 1.0;
+        double swatch_area = 0.0;  ///< of the swatch element at full size
+    };
+    std::vector<Shape> shapes;  ///< the swatch's blobs at full size and at kFillScale, largest first
+    double pixel = 0.0;         ///< raster pixel: half the swatch's clearance
+    double reach = 0.0;         ///< the largest blob's half diagonal
+    double swatch_density = 0.0;  ///< element area per footprint area in the swatch's inset window
+    double smallest_spot = 0.0; ///< a spot narrower than this (empty-disc radius) is never filled
+    double gap = 0.0;           ///< clearance a filled blob keeps (the swatch's near_gap)
+    /// A spot is filled when the ground around it holds less than this share of the swatch's density:
+    /// the tolerance of the stage (planar 0.9, surface 0.85; filling up to the swatch's density made
+    /// pebbles, already denser than the swatch on average, 7-20% denser still).
+    double sparse = 0.9;
+    /// A filled blob keeps at least this share of its swatch element's footprint and of its area
+    /// (planar 0.4; the surface stage 0.5, which keeps it within its size bound of a factor 1.5).
+    double min_area = 0.4;
+};
+
+/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
+/// intersect; `min_pixel` bounds the raster's size for large outputs, `sparse` and `min_area` see
+/// FillSetup.
+FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse, double min_area);
+
+/// The filling loop (see FillSetup): while the widest empty disc of `cov` centred where `may_centre`
+/// allows is wider than `setup.smallest_spot` and `density` (element area per ground area in a disc)
+/// says the ground around it is sparser than the swatch, the shape that covers most there after squeezing
+/// clear of the hulls `around` gives (squeeze_clear) and that `fits` (collision tests) accepts goes
+/// in through `add` (both get the element in the raster's frame and its swatch element). A spot
+/// nothing fits is left. Distances are updated in a window around each new element. Returns the
+/// number added.
+int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(const Vec2&)>& may_centre,
+               const std::function<double(const Vec2&, double)>& density,
+               const std::function<std::vector<std::vector<Vec2>>(const Vec2&, double)>& around,
+               const std::function<bool(const Mesh&, int)>& fits, const std::function<void(const Mesh&, int)>& add);
 
 /// The sides of a convex polygon (counter-clockwise, as xy_hull gives it) worth measuring: edges of at
 /// least 5% of its perimeter (a rounded corner is many short edges, not a side).

@@ -50,14 +50,6 @@ using quilt::kDensityInset;
 using quilt::kMaxOutputFaces;
 using quilt::seconds_since;
 
-// Bald spots (fill_bald_spots): an element put in keeps at least kFillMinArea of its swatch
-// element's footprint, is squeezed by at most kFillPush of its width at a time and is tried at full
-// size and at kFillScale; a spot counts when the disc of kFillWindow blob half diagonals around it is
-// less covered than the swatch.
-constexpr double kFillMinArea = 0.4;
-constexpr double kFillPush = 0.45;
-constexpr double kFillScale = 0.8;
-constexpr double kFillWindow = 3.0;
 // Joints (close_wide_joints): a side facing a joint up to kJointReach times the swatch's 90th
 // percentile grows; an element grows to at most kMaxGrowth of its swatch element's area.
 constexpr double kJointReach = 4.0;
@@ -410,118 +402,28 @@ private:
     }
 
     /// Beyond the paper: bald spots left where new elements collided or lost their merges are filled
-    /// one element at a time (see quilt/fill.h). While the output's largest empty disc (xy
-    /// projection, centred in the footprint) is wider than the swatch's own and lies in ground less
-    /// covered than the swatch (a porous pattern has wide gaps of its own), the swatch blob (closed,
-    /// genus 0, not a thread; as it is or at 0.8 of its size) that covers most there, squeezed clear
-    /// of its neighbours by the swatch's clearance (squeeze_clear), goes in. A spot nothing fits is
-    /// left. Rings and threads are never used: they must interlock or continue, which a lone element
+    /// one blob at a time after the last patch (quilt/fill.h: fill_spots, centred in the footprint).
+    /// Rings and threads are never used: they must interlock or continue, which a lone element
     /// cannot.
     void fill_bald_spots() {
-        if (!sw_.elements_disjoint || !(sw_.near_gap > 0.0)) return;
-        struct Shape {
-            int source;
-            Mesh mesh;  ///< centred on its area centroid in xy
-            double area;
-            double scale;
-        };
-        std::vector<Shape> shapes;
-        double reach = 0.0;      // the largest blob's half diagonal
-        double narrowest = 1e300;  // the smallest blob's width
-        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
-            const Mesh& m = sw_.elements[e];
-            if (!sw_.element_closed[e] || sw_.element_genus[e] != 0 || quilt::is_elongated(m)) continue;
-            const Vec3 c = area_centroid(m);
-            const Vec3 size = bounding_box(m).size();
-            reach = std::max(reach, 0.5 * size.head<2>().norm());
-            narrowest = std::min(narrowest, std::min(size.x(), size.y()));
-            for (const double f : {1.0, kFillScale}) {
-                Shape s{static_cast<int>(e), m, 0.0, f};
-                for (Vec3& v : s.mesh.vertices) v = Vec3(f * (v.x() - c.x()), f * (v.y() - c.y()), v.z());
-                s.area = mesh_area(s.mesh);
-                shapes.push_back(std::move(s));
-            }
-        }
-        if (shapes.empty()) return;
-        // Largest first: a try that cannot beat the best so far is skipped.
-        std::stable_sort(shapes.begin(), shapes.end(), [](const Shape& a, const Shape& b) { return a.area > b.area; });
+        // Spots in ground sparser than 90% of the swatch's density: the 10% the planar stage allows.
+        const quilt::FillSetup setup = quilt::prepare_fill(sw_, std::sqrt(opt_.width * opt_.height / 4e6), 0.9, 0.4);
+        if (setup.shapes.empty()) return;
         auto t0 = Clock::now();
-        const double lx = sw_.box.size().x(), ly = sw_.box.size().y();
-        const double pixel = std::max(0.5 * sw_.near_gap, std::sqrt(opt_.width * opt_.height / 4e6));
-        const double mx = kDensityInset * lx, my = kDensityInset * ly;
-        quilt::Coverage swatch_cov(sw_.box.min.x(), sw_.box.min.y(), sw_.box.max.x(), sw_.box.max.y(), pixel);
-        swatch_cov.add(sw_.mesh);
-        const double swatch_share = swatch_cov.covered_share(mx, my, lx - mx, ly - my);
-        // Spots narrower than this hold no blob, however squeezed: the search stops there.
-        const double smallest_spot = std::max(quilt::largest_empty_radius(sw_.mesh, mx, my, lx - mx, ly - my, pixel),
-                                              sw_.near_gap + 0.5 * kFillScale * (1.0 - kFillPush) * narrowest);
-        quilt::Coverage cov(-reach, -reach, opt_.width + reach, opt_.height + reach, pixel);
+        const double reach = setup.reach;
+        quilt::Coverage cov(-reach, -reach, opt_.width + reach, opt_.height + reach, setup.pixel);
         for (const OutputElement& e : elems_)
             if (e.alive) cov.add(e.mesh);
-        const int nx = cov.nx();
-        std::vector<double> d = cov.empty_distance();
-        std::vector<char> blocked(d.size(), 0);
-        for (;;) {
-            double widest = 0.0;
-            std::size_t at = 0;
-            for (int j = 0; j < cov.ny(); ++j)
-                for (int i = 0; i < nx; ++i) {
-                    const std::size_t k = static_cast<std::size_t>(j) * nx + i;
-                    if (blocked[k] || d[k] <= widest) continue;
-                    const Vec2 c = cov.centre(i, j);
-                    if (c.x() < 0 || c.y() < 0 || c.x() > opt_.width || c.y() > opt_.height) continue;
-                    widest = d[k];
-                    at = k;
-                }
-            if (widest <= smallest_spot) break;
-            const Vec2 c = cov.centre(static_cast<int>(at % nx), static_cast<int>(at / nx));
-            const int ci = static_cast<int>(at % nx), cj = static_cast<int>(at / nx), rp = static_cast<int>(std::ceil(widest / pixel));
-            auto leave = [&] {  // blocks the spot for the next searches
-                for (int j = std::max(0, cj - rp); j <= std::min(cov.ny() - 1, cj + rp); ++j)
-                    for (int i = std::max(0, ci - rp); i <= std::min(nx - 1, ci + rp); ++i)
-                        if ((cov.centre(i, j) - c).norm() <= widest) blocked[static_cast<std::size_t>(j) * nx + i] = 1;
-            };
-            if (cov.covered_share(c, kFillWindow * reach) >= swatch_share) {
-                leave();
-                continue;
-            }
-            std::vector<std::vector<Vec2>> around;
-            const double r = std::min(widest, 4.0 * reach) + 2.0 * reach;
-            for (int id : elements_in_rect(c.x() - r, c.y() - r, c.x() + r, c.y() + r))
-                around.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(id)].mesh));
-            Mesh best;
-            int best_source = -1;
-            double best_area = 0.0;
-            for (const Shape& s : shapes) {
-                if (s.area <= best_area) break;
-                Mesh placed = quilt::translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
-                if (!quilt::squeeze_clear(placed, around, sw_.near_gap, kFillMinArea / (s.scale * s.scale), kFillPush)) continue;
-                const double a = mesh_area(placed);
-                if (a <= best_area || collider_.collides(placed)) continue;
-                best = std::move(placed);
-                best_source = s.source;
-                best_area = a;
-            }
-            if (best_source < 0) {
-                leave();
-                continue;
-            }
-            cov.add(best);
-            // Distances only shrink, and only within the widest spot's radius of the new element.
-            const Box3 b = bounding_box(best);
-            const int i0 = static_cast<int>(std::floor((b.min.x() + reach) / pixel)) - rp - 1;
-            const int i1 = static_cast<int>(std::floor((b.max.x() + reach) / pixel)) + rp + 1;
-            const int j0 = static_cast<int>(std::floor((b.min.y() + reach) / pixel)) - rp - 1;
-            const int j1 = static_cast<int>(std::floor((b.max.y() + reach) / pixel)) + rp + 1;
-            const std::vector<double> local = cov.empty_distance(i0, j0, i1, j1);
-            const int w = std::min(i1, nx - 1) - std::max(i0, 0) + 1;
-            for (std::size_t k = 0; k < local.size(); ++k) {
-                const std::size_t g = static_cast<std::size_t>(std::max(j0, 0) + static_cast<int>(k) / w) * nx + std::max(i0, 0) + static_cast<int>(k) % w;
-                d[g] = std::min(d[g], local[k]);
-            }
-            add_element(best, best_source);
-            ++report_.bald_spots_filled;
-        }
+        report_.bald_spots_filled += quilt::fill_spots(
+            cov, setup, [&](const Vec2& c) { return c.x() >= 0 && c.y() >= 0 && c.x() <= opt_.width && c.y() <= opt_.height; },
+            [&](const Vec2& c, double r) { return cov.area_density(c, r); },
+            [&](const Vec2& c, double r) {
+                std::vector<std::vector<Vec2>> hulls;
+                for (int id : elements_in_rect(c.x() - r, c.y() - r, c.x() + r, c.y() + r))
+                    hulls.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(id)].mesh));
+                return hulls;
+            },
+            [&](const Mesh& m, int) { return !collider_.collides(m); }, [&](const Mesh& m, int source) { add_element(m, source); });
         stage_seconds_["bald spots"] += seconds_since(t0);
     }
 
