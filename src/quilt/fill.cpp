@@ -181,6 +181,7 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
         if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(m)) continue;
         const Vec3 c = area_centroid(m);
         const Vec3 size = bounding_box(m).size();
+        s.smallest_blob_area = s.smallest_blob_area > 0.0 ? std::min(s.smallest_blob_area, mesh_area(m)) : mesh_area(m);
         s.reach = std::max(s.reach, 0.5 * size.head<2>().norm());
         narrowest = std::min(narrowest, std::min(size.x(), size.y()));
         for (const double f : {1.0, kFillScale}) {
@@ -246,7 +247,7 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
             Mesh placed = translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
             if (!squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
             const double a = mesh_area(placed);
-            if (a <= best_area || a < setup.min_area * s.swatch_area || !fits(placed, s.source)) continue;
+            if (a <= best_area || a < setup.min_area * s.swatch_area || a < setup.area_floor || !fits(placed, s.source)) continue;
             best = std::move(placed);
             best_source = s.source;
             best_area = a;

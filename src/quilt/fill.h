@@ -90,6 +90,10 @@ struct FillSetup {
     /// A filled blob keeps at least this share of its swatch element's footprint and of its area
     /// (planar 0.4; the surface stage 0.5, which keeps it within its size bound of a factor 1.5).
     double min_area = 0.4;
+    /// A filled blob keeps at least this area (0: no floor). The surface stage sets the swatch's
+    /// smallest blob's, so fills do not widen the spread of element sizes below the swatch's own.
+    double area_floor = 0.0;
+    double smallest_blob_area = 0.0;  ///< of the swatch's blobs
 };
 
 /// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
