@@ -136,15 +136,16 @@ TEST(Coverage, DistanceTransformIsExact) {
     for (double v : empty.empty_distance()) EXPECT_EQ(v, std::numeric_limits<double>::max());
 }
 
-TEST(Coverage, LargestEmptyDiscAndCoveredShare) {
+TEST(Coverage, LargestEmptyDiscAndAreaDensity) {
     // Two 1 x 1 stones 1.0 apart along x: the widest empty disc between them has radius 0.5.
     const Mesh m = shapes::concat(block(2, 0.5, Vec3(0, 0, 0)), block(2, 0.5, Vec3(2, 0, 0)));
     const double r = quilt::largest_empty_radius(m, 1.2, 0.2, 1.8, 0.8, 0.02);
     EXPECT_NEAR(r, 0.5, 0.03);
-    quilt::Coverage cov(0.0, 0.0, 3.0, 1.0, 0.02);
+    // Each stone has area 2 x 1 + 4 x 0.5 = 4; over a disc holding the whole 5 x 3 raster, 8 / 15.
+    quilt::Coverage cov(-1.0, -1.0, 4.0, 2.0, 0.02);
     cov.add(m);
-    EXPECT_NEAR(cov.covered_share(0.0, 0.0, 3.0, 1.0), 2.0 / 3.0, 0.02);
-    EXPECT_NEAR(cov.covered_share(Vec2(1.5, 0.5), 0.4), 0.0, 1e-12);
+    EXPECT_NEAR(cov.area_density(Vec2(1.5, 0.5), 10.0), 8.0 / 15.0, 1e-9);
+    EXPECT_NEAR(cov.area_density(Vec2(1.5, 0.5), 0.4), 0.0, 1e-12);  // the gap between them
 }
 
 TEST(HullSides, ClearanceAlongEachSide) {

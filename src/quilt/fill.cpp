@@ -86,11 +86,6 @@ void Coverage::add(const Mesh& m) {
     }
 }
 
-void Coverage::cover_outside(const Coverage& mask) {
-    for (std::size_t k = 0; k < covered_.size() && k < mask.covered_.size(); ++k)
-        if (!mask.covered_[k]) covered_[k] = 1;
-}
-
 std::vector<double> Coverage::empty_distance() const { return empty_distance(0, 0, nx_ - 1, ny_ - 1); }
 
 std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) const {
@@ -109,65 +104,36 @@ std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) con
     std::vector<double> f, d;
     std::vector<double> z(static_cast<std::size_t>(longest) + 1);
     std::vector<int> v(static_cast<std::size_t>(longest));
-    // Columns, then rows.
-    f.resize(static_cast<std::size_t>(h));
-    d.resize(static_cast<std::size_t>(h));
-    for (int i = 0; i < w; ++i) {
-        for (int j = 0; j < h; ++j) f[static_cast<std::size_t>(j)] = sq[static_cast<std::size_t>(j) * w + i];
-        distance_1d(f, d, v, z);
-        for (int j = 0; j < h; ++j) sq[static_cast<std::size_t>(j) * w + i] = d[static_cast<std::size_t>(j)];
-    }
-    f.resize(static_cast<std::size_t>(w));
-    d.resize(static_cast<std::size_t>(w));
-    for (int j = 0; j < h; ++j) {
-        for (int i = 0; i < w; ++i) f[static_cast<std::size_t>(i)] = sq[static_cast<std::size_t>(j) * w + i];
-        distance_1d(f, d, v, z);
-        for (int i = 0; i < w; ++i) sq[static_cast<std::size_t>(j) * w + i] = d[static_cast<std::size_t>(i)];
-    }
+    // One 1D transform along each of `lines` lines of `length` samples, sample k of line l at
+    // sq[l * across + k * along].
+    auto pass = [&](int lines, int length, std::size_t across, std::size_t along) {
+        f.resize(static_cast<std::size_t>(length));
+        d.resize(static_cast<std::size_t>(length));
+        for (int l = 0; l < lines; ++l) {
+            for (int k = 0; k < length; ++k) f[static_cast<std::size_t>(k)] = sq[l * across + k * along];
+            distance_1d(f, d, v, z);
+            for (int k = 0; k < length; ++k) sq[l * across + k * along] = d[static_cast<std::size_t>(k)];
+        }
+    };
+    pass(w, h, 1, static_cast<std::size_t>(w));  // columns
+    pass(h, w, static_cast<std::size_t>(w), 1);  // rows
     std::vector<double> out(n);
     for (std::size_t k = 0; k < n; ++k) out[k] = sq[k] == inf ? std::numeric_limits<double>::max() : pixel_ * std::sqrt(sq[k]);
     return out;
 }
 
-double Coverage::covered_share(const Vec2& c, double radius) const {
-    const int i0 = std::max(0, static_cast<int>(std::floor((c.x() - radius - x0_) / pixel_)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((c.x() + radius - x0_) / pixel_)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((c.y() - radius - y0_) / pixel_)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((c.y() + radius - y0_) / pixel_)));
-    long in = 0, hit = 0;
-    for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i)
-            if ((centre(i, j) - c).squaredNorm() <= radius * radius) {
-                ++in;
-                hit += covered(i, j);
-            }
-    return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
-}
-
-double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask) const {
+double Coverage::area_density(const Vec2& c, double radius) const {
     const int i0 = std::max(0, column(c.x() - radius)), i1 = std::min(nx_ - 1, column(c.x() + radius));
     const int j0 = std::max(0, row(c.y() - radius)), j1 = std::min(ny_ - 1, row(c.y() + radius));
     long in = 0;
     double area = 0.0;
     for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i)
-            if ((!mask || mask->covered(i, j)) && (centre(i, j) - c).squaredNorm() <= radius * radius) {
+            if ((centre(i, j) - c).squaredNorm() <= radius * radius) {
                 ++in;
                 area += area_[static_cast<std::size_t>(j) * nx_ + i];
             }
     return in > 0 ? area / (static_cast<double>(in) * pixel_ * pixel_) : 0.0;
-}
-
-double Coverage::covered_share(double x0, double y0, double x1, double y1) const {
-    long in = 0, hit = 0;
-    for (int j = 0; j < ny_; ++j)
-        for (int i = 0; i < nx_; ++i) {
-            const Vec2 c = centre(i, j);
-            if (c.x() < x0 || c.x() > x1 || c.y() < y0 || c.y() > y1) continue;
-            ++in;
-            hit += covered(i, j);
-        }
-    return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
 }
 
 FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area) {
@@ -181,7 +147,6 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
         if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(m)) continue;
         const Vec3 c = area_centroid(m);
         const Vec3 size = bounding_box(m).size();
-        s.smallest_blob_area = s.smallest_blob_area > 0.0 ? std::min(s.smallest_blob_area, mesh_area(m)) : mesh_area(m);
         s.reach = std::max(s.reach, 0.5 * size.head<2>().norm());
         narrowest = std::min(narrowest, std::min(size.x(), size.y()));
         for (const double f : {1.0, kFillScale}) {
@@ -247,7 +212,7 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
             Mesh placed = translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
             if (!squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
             const double a = mesh_area(placed);
-            if (a <= best_area || a < setup.min_area * s.swatch_area || a < setup.area_floor || !fits(placed, s.source)) continue;
+            if (a <= best_area || a < setup.min_area * s.swatch_area || !fits(placed, s.source)) continue;
             best = std::move(placed);
             best_source = s.source;
             best_area = a;

@@ -32,10 +32,6 @@ public:
     /// area to the pixel of its centroid.
     void add(const Mesh& m);
 
-    /// Marks every pixel that `mask` (a raster of the same rectangle and pixel) does not cover, so
-    /// that distances end there (ground beyond a surface patch holds elements the frame cannot show).
-    void cover_outside(const Coverage& mask);
-
     /// Per pixel, the distance from its centre to the nearest covered pixel centre (0 on covered
     /// pixels; a huge value when nothing is covered). Exact Euclidean distance transform (Felzenszwalb
     /// and Huttenlocher 2012), linear in the number of pixels.
@@ -44,13 +40,8 @@ public:
     /// major over the window.
     [[nodiscard]] std::vector<double> empty_distance(int i0, int j0, int i1, int j1) const;
 
-    /// Share of the pixels with centres in the disc (`c`, `radius`) that are covered (0 without any).
-    [[nodiscard]] double covered_share(const Vec2& c, double radius) const;
-    /// Face area (by centroid, see add) per unit area of the pixels with centres in the disc; with
-    /// `mask` (a raster of the same rectangle and pixel), of those pixels that it covers.
-    [[nodiscard]] double area_density(const Vec2& c, double radius, const Coverage* mask = nullptr) const;
-    /// Share of the pixels with centres in [x0, x1] x [y0, y1] that are covered.
-    [[nodiscard]] double covered_share(double x0, double y0, double x1, double y1) const;
+    /// Face area (by centroid, see add) per unit area of the pixels with centres in the disc.
+    [[nodiscard]] double area_density(const Vec2& c, double radius) const;
 
     [[nodiscard]] int nx() const { return nx_; }
     [[nodiscard]] int ny() const { return ny_; }
@@ -84,16 +75,11 @@ struct FillSetup {
     double smallest_spot = 0.0; ///< a spot narrower than this (empty-disc radius) is never filled
     double gap = 0.0;           ///< clearance a filled blob keeps (the swatch's near_gap)
     /// A spot is filled when the ground around it holds less than this share of the swatch's density:
-    /// the tolerance of the stage (planar 0.9, surface 0.85; filling up to the swatch's density made
-    /// pebbles, already denser than the swatch on average, 7-20% denser still).
+    /// the tolerance of the stage (planar 0.9; filling up to the swatch's density made pebbles,
+    /// already denser than the swatch on average, 7-9% denser still).
     double sparse = 0.9;
-    /// A filled blob keeps at least this share of its swatch element's footprint and of its area
-    /// (planar 0.4; the surface stage 0.5, which keeps it within its size bound of a factor 1.5).
+    /// A filled blob keeps at least this share of its swatch element's footprint and of its area.
     double min_area = 0.4;
-    /// A filled blob keeps at least this area (0: no floor). The surface stage sets the swatch's
-    /// smallest blob's, so fills do not widen the spread of element sizes below the swatch's own.
-    double area_floor = 0.0;
-    double smallest_blob_area = 0.0;  ///< of the swatch's blobs
 };
 
 /// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
