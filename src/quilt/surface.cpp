@@ -490,7 +490,7 @@ private:
         for (int id : near) {
             const SurfElement& e = elems_[static_cast<std::size_t>(id)];
             Mesh m;
-            m.vertices.resize(e.anchors.size());
+            m.vertices.assign(e.anchors.size(), Vec3::Zero());
             std::vector<char> ok(e.anchors.size(), 0);
             bool whole = true;
             for (std::size_t v = 0; v < e.anchors.size(); ++v) {
@@ -509,10 +509,25 @@ private:
                 reach_[id] = std::move(reach);
                 old.push_back({id, std::move(m)});
             } else {
+                // Only the vertices its kept faces use: the others have no place in the frame, and a
+                // test reading them (element_gap reads every vertex) would read garbage.
                 ++surface_.frozen_elements_seen;
-                for (const Tri& t : e.faces)
-                    if (ok[static_cast<std::size_t>(t[0])] && ok[static_cast<std::size_t>(t[1])] && ok[static_cast<std::size_t>(t[2])]) m.faces.push_back(t);
-                obstacles.push_back(std::move(m));
+                Mesh part;
+                std::vector<int> slot(m.vertices.size(), -1);
+                for (const Tri& t : e.faces) {
+                    if (!ok[static_cast<std::size_t>(t[0])] || !ok[static_cast<std::size_t>(t[1])] || !ok[static_cast<std::size_t>(t[2])]) continue;
+                    Tri u;
+                    for (int k = 0; k < 3; ++k) {
+                        int& id = slot[static_cast<std::size_t>(t[k])];
+                        if (id < 0) {
+                            id = static_cast<int>(part.vertices.size());
+                            part.vertices.push_back(m.vertices[static_cast<std::size_t>(t[k])]);
+                        }
+                        u[k] = id;
+                    }
+                    part.faces.push_back(u);
+                }
+                obstacles.push_back(std::move(part));
             }
         }
         // Occupancy raster in the patch frame (cells of the swatch grid).
