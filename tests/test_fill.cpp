@@ -4,8 +4,11 @@
 // that finds bald spots and wide joints (quilt/fill.h).
 
 #include "core/intersect.h"
+#include "meshquilt/io.h"
 #include "quilt/fill.h"
 #include "quilt/kernel.h"
+#include "quilt/swatch.h"
+#include "support/paths.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -33,6 +36,16 @@ Mesh block(int n, double s, const Vec3& offset) {
     Mesh m = shapes::voxels(cells);
     for (Vec3& v : m.vertices) v = s * v + offset;
     return m;
+}
+
+/// A paving whose joints are 0.1 wide, 0.2 at the widest; neighbours 0.8 away are open ground.
+quilt::JointSetup test_joints() {
+    quilt::JointSetup s;
+    s.paving = true;
+    s.typical = 0.1;
+    s.wide = 0.2;
+    s.limit = 0.8;
+    return s;
 }
 
 }  // namespace
@@ -136,7 +149,7 @@ TEST(Coverage, DistanceTransformIsExact) {
     for (double v : empty.empty_distance()) EXPECT_EQ(v, std::numeric_limits<double>::max());
 }
 
-TEST(Coverage, LargestEmptyDiscAndAreaDensity) {
+TEST(Coverage, LargestEmptyDiscAreaDensityAndMask) {
     // Two 1 x 1 stones 1.0 apart along x: the widest empty disc between them has radius 0.5.
     const Mesh m = shapes::concat(block(2, 0.5, Vec3(0, 0, 0)), block(2, 0.5, Vec3(2, 0, 0)));
     const double r = quilt::largest_empty_radius(m, 1.2, 0.2, 1.8, 0.8, 0.02);
@@ -146,6 +159,23 @@ TEST(Coverage, LargestEmptyDiscAndAreaDensity) {
     cov.add(m);
     EXPECT_NEAR(cov.area_density(Vec2(1.5, 0.5), 10.0), 8.0 / 15.0, 1e-9);
     EXPECT_NEAR(cov.area_density(Vec2(1.5, 0.5), 0.4), 0.0, 1e-12);  // the gap between them
+    // With a mask (the ground of a surface patch), only its pixels count: [-0.5, 3.5] x [-0.5, 1.5]
+    // here, area 8, holding both stones.
+    quilt::Coverage ground(-1.0, -1.0, 4.0, 2.0, 0.02);
+    Mesh sheet;
+    sheet.vertices = {Vec3(-0.5, -0.5, 0), Vec3(3.5, -0.5, 0), Vec3(3.5, 1.5, 0), Vec3(-0.5, 1.5, 0)};
+    sheet.faces = {{0, 1, 2}, {0, 2, 3}};
+    ground.add(sheet);
+    EXPECT_NEAR(cov.area_density(Vec2(1.5, 0.5), 10.0, &ground), 1.0, 1e-9);
+    // Beyond the mask counts as covered: distances end at its border.
+    auto distance_at = [&](double x, double y) {
+        return cov.empty_distance()[static_cast<std::size_t>(cov.row(y)) * static_cast<std::size_t>(cov.nx()) + static_cast<std::size_t>(cov.column(x))];
+    };
+    EXPECT_NEAR(distance_at(1.5, 1.2), std::hypot(0.5, 0.2), 0.03);  // to the nearer stone's corner
+    cov.cover_outside(ground);
+    EXPECT_EQ(distance_at(1.5, 1.8), 0.0);
+    EXPECT_NEAR(distance_at(1.5, 1.2), 0.3, 0.03);  // to the mask's border
+    EXPECT_NEAR(distance_at(1.5, 0.5), 0.5, 0.03);  // between the stones, as before
 }
 
 TEST(HullSides, ClearanceAlongEachSide) {
@@ -165,4 +195,62 @@ TEST(HullSides, ClearanceAlongEachSide) {
         }
     }
     EXPECT_EQ(facing, 1);
+}
+
+TEST(Joints, OnlyAPavingHasJointsToClose) {
+    // The bundled swatches: cobbles' joints are about a tenth of a stone, pebbles' and rivets' half
+    // of one or more; chain mail and the weave have no blob.
+    const quilt::JointSetup cobbles = quilt::prepare_joints(quilt::prepare_swatch(mq::read_mesh(mq::test::swatch_path("cobbles"))));
+    EXPECT_TRUE(cobbles.paving);
+    EXPECT_GT(cobbles.typical, 0.0);
+    EXPECT_GE(cobbles.wide, cobbles.typical);
+    EXPECT_DOUBLE_EQ(cobbles.limit, quilt::kJointReach * cobbles.wide);
+    for (const char* name : {"pebbles", "rivets", "chainmail", "weave"})
+        EXPECT_FALSE(quilt::prepare_joints(quilt::prepare_swatch(mq::read_mesh(mq::test::swatch_path(name)))).paving) << name;
+}
+
+TEST(Joints, ASideGrowsIntoAWideJointAndLeavesTheTypicalOne) {
+    quilt::JointSetup setup = test_joints();
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));                                    // [0, 2] x [0, 2]
+    const std::vector<std::vector<Vec2>> right{quilt::xy_hull(block(4, 0.5, Vec3(2.5, 0, 0)))};  // a joint of 0.5
+    int asked = 0;
+    Mesh grown;
+    ASSERT_TRUE(quilt::grow_into_joints(a, right, setup, quilt::mesh_area(a), [&](const Mesh&) { return ++asked > 0; }, &grown));
+    EXPECT_EQ(asked, 1);
+    const mq::Box3 box = mq::bounding_box(grown);
+    EXPECT_NEAR(box.max.x(), 2.4, 1e-9);  // the typical joint is left
+    EXPECT_NEAR(box.min.x(), 0.0, 1e-12);
+    EXPECT_NEAR(box.min.y(), 0.0, 1e-12);
+    EXPECT_NEAR(box.max.y(), 2.0, 1e-12);
+    EXPECT_TRUE(quilt::is_closed_oriented(grown));
+    EXPECT_EQ(mq::count_self_intersections(grown), 0);
+
+    // Refused at full growth: half of it is offered next, then a quarter.
+    std::vector<double> offered;
+    ASSERT_TRUE(quilt::grow_into_joints(
+        a, right, setup, quilt::mesh_area(a),
+        [&](const Mesh& g) {
+            offered.push_back(mq::bounding_box(g).max.x());
+            return offered.size() == 3;
+        },
+        &grown));
+    ASSERT_EQ(offered.size(), 3u);
+    EXPECT_NEAR(offered[1], 2.2, 1e-9);
+    EXPECT_NEAR(offered[2], 2.1, 1e-9);
+    EXPECT_NEAR(mq::bounding_box(grown).max.x(), 2.1, 1e-9);
+}
+
+TEST(Joints, NarrowJointsOpenGroundAndTheAreaCapLeaveAStoneAlone) {
+    quilt::JointSetup setup = test_joints();
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));
+    Mesh grown;
+    auto never = [](const Mesh&) -> bool { ADD_FAILURE() << "nothing to grow, nothing to accept"; return false; };
+    // A joint narrower than the swatch's wide ones, and a neighbour beyond the limit (open ground).
+    EXPECT_FALSE(quilt::grow_into_joints(a, {quilt::xy_hull(block(4, 0.5, Vec3(2.15, 0, 0)))}, setup, quilt::mesh_area(a), never, &grown));
+    EXPECT_FALSE(quilt::grow_into_joints(a, {quilt::xy_hull(block(4, 0.5, Vec3(3.0, 0, 0)))}, setup, quilt::mesh_area(a), never, &grown));
+    // A stone already at its swatch element's area may not grow by 30% more.
+    EXPECT_FALSE(quilt::grow_into_joints(a, {quilt::xy_hull(block(4, 0.5, Vec3(2.5, 0, 0)))}, setup, 0.7 * quilt::mesh_area(a), never, &grown));
+    // Not a paving: nothing.
+    setup.paving = false;
+    EXPECT_FALSE(quilt::grow_into_joints(a, {quilt::xy_hull(block(4, 0.5, Vec3(2.5, 0, 0)))}, setup, quilt::mesh_area(a), never, &grown));
 }

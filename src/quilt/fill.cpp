@@ -86,6 +86,11 @@ void Coverage::add(const Mesh& m) {
     }
 }
 
+void Coverage::cover_outside(const Coverage& mask) {
+    for (std::size_t k = 0; k < covered_.size() && k < mask.covered_.size(); ++k)
+        if (!mask.covered_[k]) covered_[k] = 1;
+}
+
 std::vector<double> Coverage::empty_distance() const { return empty_distance(0, 0, nx_ - 1, ny_ - 1); }
 
 std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) const {
@@ -122,14 +127,14 @@ std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) con
     return out;
 }
 
-double Coverage::area_density(const Vec2& c, double radius) const {
+double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask) const {
     const int i0 = std::max(0, column(c.x() - radius)), i1 = std::min(nx_ - 1, column(c.x() + radius));
     const int j0 = std::max(0, row(c.y() - radius)), j1 = std::min(ny_ - 1, row(c.y() + radius));
     long in = 0;
     double area = 0.0;
     for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i)
-            if ((centre(i, j) - c).squaredNorm() <= radius * radius) {
+            if ((!mask || mask->covered(i, j)) && (centre(i, j) - c).squaredNorm() <= radius * radius) {
                 ++in;
                 area += area_[static_cast<std::size_t>(j) * nx_ + i];
             }
@@ -147,6 +152,7 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
         if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(m)) continue;
         const Vec3 c = area_centroid(m);
         const Vec3 size = bounding_box(m).size();
+        s.smallest_blob_area = s.smallest_blob_area > 0.0 ? std::min(s.smallest_blob_area, mesh_area(m)) : mesh_area(m);
         s.reach = std::max(s.reach, 0.5 * size.head<2>().norm());
         narrowest = std::min(narrowest, std::min(size.x(), size.y()));
         for (const double f : {1.0, kFillScale}) {
@@ -212,7 +218,7 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
             Mesh placed = translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
             if (!squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
             const double a = mesh_area(placed);
-            if (a <= best_area || a < setup.min_area * s.swatch_area || !fits(placed, s.source)) continue;
+            if (a <= best_area || a < setup.min_area * s.swatch_area || a < setup.area_floor || !fits(placed, s.source)) continue;
             best = std::move(placed);
             best_source = s.source;
             best_area = a;
@@ -269,6 +275,69 @@ double side_clearance(const std::vector<Vec2>& hull, std::size_t edge, const std
             }
     }
     return best;
+}
+
+JointSetup prepare_joints(const SwatchData& sw) {
+    JointSetup s;
+    if (!sw.elements_disjoint || !(sw.near_gap > 0.0)) return s;
+    std::vector<std::vector<Vec2>> hulls;
+    for (const Mesh& m : sw.elements) hulls.push_back(xy_hull(m));
+    std::vector<std::size_t> blobs;
+    double reach = 0.0;
+    for (std::size_t e = 0; e < sw.elements.size(); ++e) {
+        if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(sw.elements[e])) continue;
+        blobs.push_back(e);
+        reach = std::max(reach, 0.5 * bounding_box(sw.elements[e]).size().head<2>().norm());
+    }
+    std::vector<double> joints, sizes;
+    for (std::size_t e : blobs) {
+        std::vector<std::vector<Vec2>> others;
+        for (std::size_t o = 0; o < hulls.size(); ++o)
+            if (o != e) others.push_back(hulls[o]);
+        for (std::size_t side : hull_sides(hulls[e])) {
+            const double f = side_clearance(hulls[e], side, others, reach);
+            if (f < reach) joints.push_back(f);
+        }
+        sizes.push_back(std::sqrt(polygon_area(hulls[e])));
+    }
+    if (joints.size() < 8) return s;
+    std::sort(joints.begin(), joints.end());
+    std::sort(sizes.begin(), sizes.end());
+    s.typical = joints[joints.size() / 2];
+    s.wide = joints[static_cast<std::size_t>(0.9 * static_cast<double>(joints.size() - 1))];
+    s.limit = kJointReach * s.wide;
+    s.reach = reach;
+    s.paving = s.typical <= kPavingJoint * sizes[sizes.size() / 2];
+    return s;
+}
+
+bool grow_into_joints(const Mesh& m, const std::vector<std::vector<Vec2>>& around, const JointSetup& setup, double source_area,
+                      const std::function<bool(const Mesh&)>& accept, Mesh* grown) {
+    if (!setup.paving) return false;
+    const std::vector<Vec2> hull = xy_hull(m);
+    struct Grow { Vec2 inward; double by; };
+    std::vector<Grow> grows;
+    for (std::size_t s : hull_sides(hull)) {
+        const double f = side_clearance(hull, s, around, setup.limit);
+        if (f <= setup.wide || f >= setup.limit) continue;
+        const Vec2 e = hull[(s + 1) % hull.size()] - hull[s];
+        grows.push_back({Vec2(-e.y(), e.x()).normalized(), f - setup.typical});
+    }
+    for (double share = 1.0; share > 0.2 && !grows.empty(); share *= 0.5) {
+        Mesh g = m;
+        for (const Grow& gr : grows) {
+            double lo = 1e300, hi = -1e300;
+            for (const Vec3& v : g.vertices) {
+                lo = std::min(lo, gr.inward.dot(v.head<2>()));
+                hi = std::max(hi, gr.inward.dot(v.head<2>()));
+            }
+            push_side(g, gr.inward, lo, hi, -std::min(share * gr.by, 0.3 * (hi - lo)));
+        }
+        if (mesh_area(g) > kMaxGrowth * source_area || !accept(g)) continue;
+        *grown = std::move(g);
+        return true;
+    }
+    return false;
 }
 
 double largest_empty_radius(const Mesh& m, double x0, double y0, double x1, double y1, double pixel) {

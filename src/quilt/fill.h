@@ -32,6 +32,10 @@ public:
     /// area to the pixel of its centroid.
     void add(const Mesh& m);
 
+    /// Marks every pixel that `mask` (a raster of the same rectangle and pixel) does not cover, so
+    /// that distances end there (ground beyond a surface patch holds elements the frame cannot show).
+    void cover_outside(const Coverage& mask);
+
     /// Per pixel, the distance from its centre to the nearest covered pixel centre (0 on covered
     /// pixels; a huge value when nothing is covered). Exact Euclidean distance transform (Felzenszwalb
     /// and Huttenlocher 2012), linear in the number of pixels.
@@ -40,8 +44,9 @@ public:
     /// major over the window.
     [[nodiscard]] std::vector<double> empty_distance(int i0, int j0, int i1, int j1) const;
 
-    /// Face area (by centroid, see add) per unit area of the pixels with centres in the disc.
-    [[nodiscard]] double area_density(const Vec2& c, double radius) const;
+    /// Face area (by centroid, see add) per unit area of the pixels with centres in the disc; with
+    /// `mask` (a raster of the same rectangle and pixel), of those pixels that it covers.
+    [[nodiscard]] double area_density(const Vec2& c, double radius, const Coverage* mask = nullptr) const;
 
     [[nodiscard]] int nx() const { return nx_; }
     [[nodiscard]] int ny() const { return ny_; }
@@ -75,11 +80,16 @@ struct FillSetup {
     double smallest_spot = 0.0; ///< a spot narrower than this (empty-disc radius) is never filled
     double gap = 0.0;           ///< clearance a filled blob keeps (the swatch's near_gap)
     /// A spot is filled when the ground around it holds less than this share of the swatch's density:
-    /// the tolerance of the stage (planar 0.9; filling up to the swatch's density made pebbles,
-    /// already denser than the swatch on average, 7-9% denser still).
+    /// the tolerance of the stage (planar 0.9, surface 0.85; filling up to the swatch's density made
+    /// pebbles, already denser than the swatch on average, 7-20% denser still).
     double sparse = 0.9;
-    /// A filled blob keeps at least this share of its swatch element's footprint and of its area.
+    /// A filled blob keeps at least this share of its swatch element's footprint and of its area
+    /// (planar 0.4; the surface stage 0.5, which keeps it within its size bound of a factor 1.5).
     double min_area = 0.4;
+    /// A filled blob keeps at least this area (0: no floor). The surface stage sets the swatch's
+    /// smallest blob's, so fills do not widen the spread of element sizes below the swatch's own.
+    double area_floor = 0.0;
+    double smallest_blob_area = 0.0;  ///< of the swatch's blobs
 };
 
 /// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
@@ -107,6 +117,37 @@ std::vector<std::size_t> hull_sides(const std::vector<Vec2>& hull);
 /// normal before it meets one of `others` (convex polygons): the least distance along rays from
 /// five points of the side's middle 80%. `limit` when no ray meets anything within it.
 double side_clearance(const std::vector<Vec2>& hull, std::size_t edge, const std::vector<std::vector<Vec2>>& others, double limit);
+
+/// Beyond the paper: joints. Where the stones of two placements meet, a paving (cobbles, tiles,
+/// flagstones) shows joints wider than its own; a stone's side facing such a joint grows into it.
+/// What that needs of a swatch, in the swatch's units.
+struct JointSetup {
+    bool paving = false;   ///< the median joint is narrower than kPavingJoint of the median blob's size
+    double typical = 0.0;  ///< median joint (side clearance) between the swatch's blobs
+    double wide = 0.0;     ///< 90th percentile: narrower joints are left alone
+    double limit = 0.0;    ///< kJointReach * wide: farther neighbours are open ground, not a joint
+    double reach = 0.0;    ///< the largest blob's half diagonal
+};
+
+/// A side facing a joint up to kJointReach times the swatch's 90th percentile grows; an element
+/// grows to at most kMaxGrowth of its swatch element's area. A swatch is a paving when its median
+/// joint is below kPavingJoint of its median blob's size (the square root of its footprint's area):
+/// cobbles 0.09, pebbles 0.5, rivets 0.4.
+inline constexpr double kJointReach = 4.0;
+inline constexpr double kPavingJoint = 0.2;
+inline constexpr double kMaxGrowth = 1.3;
+
+/// Not a paving (nothing to close) unless the swatch's elements are disjoint blobs with at least 8
+/// measured sides.
+JointSetup prepare_joints(const SwatchData& swatch);
+
+/// Grows the sides of blob `m` (xy hull) that face joints wider than `setup.wide` and narrower than
+/// `setup.limit` against the hulls `around`, towards the typical joint: by the whole excess, else by
+/// half, else a quarter (push_side, at most 30% of the element's extent each), keeping the area within
+/// kMaxGrowth of `source_area`. The first growth that `accept` takes is returned in `grown`; false
+/// when no side faces a wide joint or none was accepted.
+bool grow_into_joints(const Mesh& m, const std::vector<std::vector<Vec2>>& around, const JointSetup& setup, double source_area,
+                      const std::function<bool(const Mesh&)>& accept, Mesh* grown);
 
 /// The radius of the largest empty disc centred in [x0, x1] x [y0, y1] among the elements of `m`
 /// (xy projection, pixel resolution), with geometry anywhere in `m` counting.

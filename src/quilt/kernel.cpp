@@ -522,7 +522,7 @@ Push shortest_push(const std::vector<Vec2>& a, const std::vector<Vec2>& b, doubl
             const Vec2 e = (*h)[(i + 1) % h->size()] - (*h)[i];
             if (e.norm() < 1e-300) continue;
             const Vec2 n0 = Vec2(e.y(), -e.x()).normalized();
-            for (const Vec2 n : {n0, Vec2(-n0)}) {
+            for (const Vec2& n : {n0, Vec2(-n0)}) {
                 double a_lo, a_hi, b_lo, b_hi;
                 range(a, n, &a_lo, &a_hi);
                 range(b, n, &b_lo, &b_hi);

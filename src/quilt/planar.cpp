@@ -50,13 +50,6 @@ using quilt::kDensityInset;
 using quilt::kMaxOutputFaces;
 using quilt::seconds_since;
 
-// Joints (close_wide_joints): a side facing a joint up to kJointReach times the swatch's 90th
-// percentile grows; an element grows to at most kMaxGrowth of its swatch element's area.
-constexpr double kJointReach = 4.0;
-/// A swatch is a paving when its median joint is below this share of its median blob's size
-/// (square root of the footprint's area): cobbles 0.09, pebbles 0.5, rivets 0.4.
-constexpr double kPavingJoint = 0.2;
-constexpr double kMaxGrowth = 1.3;
 
 /// Output grid with a margin of cells around the footprint, so that placements near the border
 /// keep track of what they cover.
@@ -435,38 +428,13 @@ private:
     /// element's area, collide with nothing and keep the clearance, or the growth is halved (twice)
     /// and then dropped. A porous pattern (pebbles) has a wide 90th percentile, and barely grows.
     void close_wide_joints() {
-        if (!sw_.elements_disjoint || !(sw_.near_gap > 0.0)) return;
+        if (!joints_.paving) return;
         auto t0 = Clock::now();
-        std::vector<std::vector<Vec2>> swatch_hulls;
-        for (const Mesh& m : sw_.elements) swatch_hulls.push_back(quilt::xy_hull(m));
         auto is_blob = [&](int source) {
             const auto s = static_cast<std::size_t>(source);
             return source >= 0 && sw_.element_closed[s] && sw_.element_genus[s] == 0 && !quilt::is_elongated(sw_.elements[s]);
         };
-        double reach = 0.0;
-        for (std::size_t e = 0; e < sw_.elements.size(); ++e)
-            if (is_blob(static_cast<int>(e))) reach = std::max(reach, 0.5 * bounding_box(sw_.elements[e]).size().head<2>().norm());
-        std::vector<double> joints;
-        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
-            if (!is_blob(static_cast<int>(e))) continue;
-            std::vector<std::vector<Vec2>> others;
-            for (std::size_t o = 0; o < swatch_hulls.size(); ++o)
-                if (o != e) others.push_back(swatch_hulls[o]);
-            for (std::size_t s : quilt::hull_sides(swatch_hulls[e])) {
-                const double f = quilt::side_clearance(swatch_hulls[e], s, others, reach);
-                if (f < reach) joints.push_back(f);
-            }
-        }
-        if (joints.size() < 8) return;
-        std::sort(joints.begin(), joints.end());
-        const double typical = joints[joints.size() / 2], wide = joints[static_cast<std::size_t>(0.9 * static_cast<double>(joints.size() - 1))];
-        const double limit = kJointReach * wide;
-        // Only a paving (cobbles, tiles, flagstones) has joints to close: narrow against its elements.
-        std::vector<double> sizes;
-        for (std::size_t e = 0; e < sw_.elements.size(); ++e)
-            if (is_blob(static_cast<int>(e))) sizes.push_back(std::sqrt(quilt::polygon_area(swatch_hulls[e])));
-        std::sort(sizes.begin(), sizes.end());
-        if (typical > kPavingJoint * sizes[sizes.size() / 2]) return;
+        const double reach = joints_.reach, limit = joints_.limit;
         std::vector<int> ids;
         for (std::size_t id = 0; id < elems_.size(); ++id)
             if (elems_[id].alive && is_blob(elems_[id].source)) ids.push_back(static_cast<int>(id));
@@ -475,38 +443,18 @@ private:
             const Box3 box = bounding_box(el.mesh);
             const Vec3 mid = 0.5 * (box.min + box.max);
             if (mid.x() < -reach || mid.y() < -reach || mid.x() > opt_.width + reach || mid.y() > opt_.height + reach) continue;
-            const std::vector<Vec2> hull = quilt::xy_hull(el.mesh);
             std::vector<std::vector<Vec2>> around;
             for (int o : elements_in_rect(box.min.x() - limit, box.min.y() - limit, box.max.x() + limit, box.max.y() + limit))
                 if (o != id) around.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(o)].mesh));
-            struct Grow { Vec2 inward; double by; };
-            std::vector<Grow> grows;
-            for (std::size_t s : quilt::hull_sides(hull)) {
-                const double f = quilt::side_clearance(hull, s, around, limit);
-                if (f <= wide || f >= limit) continue;
-                const Vec2 e = hull[(s + 1) % hull.size()] - hull[s];
-                grows.push_back({Vec2(-e.y(), e.x()).normalized(), f - typical});
-            }
-            if (grows.empty()) continue;
-            const double source_area = mesh_area(sw_.elements[static_cast<std::size_t>(el.source)]);
-            for (double share = 1.0; share > 0.2; share *= 0.5) {
-                Mesh grown = el.mesh;
-                for (const Grow& g : grows) {
-                    double lo = 1e300, hi = -1e300;
-                    for (const Vec3& v : grown.vertices) {
-                        lo = std::min(lo, g.inward.dot(v.head<2>()));
-                        hi = std::max(hi, g.inward.dot(v.head<2>()));
-                    }
-                    quilt::push_side(grown, g.inward, lo, hi, -std::min(share * g.by, 0.3 * (hi - lo)));
-                }
-                if (mesh_area(grown) > kMaxGrowth * source_area) continue;
-                if (collider_.collides(grown, {el.collider_id}) || !keeps_gap(grown, el.source, id)) continue;
-                const int source = el.source;
-                remove_element(id);
-                add_element(grown, source);
-                ++report_.joints_closed;
-                break;
-            }
+            const int source = el.source;
+            Mesh grown;
+            if (!quilt::grow_into_joints(
+                    el.mesh, around, joints_, mesh_area(sw_.elements[static_cast<std::size_t>(source)]),
+                    [&](const Mesh& g) { return !collider_.collides(g, {el.collider_id}) && keeps_gap(g, source, id); }, &grown))
+                continue;
+            remove_element(id);
+            add_element(grown, source);
+            ++report_.joints_closed;
         }
         stage_seconds_["joints"] += seconds_since(t0);
     }
@@ -514,6 +462,7 @@ private:
     void finish(QuiltResult& result) {
         fill_bald_spots();
         // Twice: a side held back by the growth cap or a neighbour's growth gets a second chance.
+        joints_ = quilt::prepare_joints(sw_);
         for (int pass = 0; pass < 2; ++pass) close_wide_joints();
         auto t0 = Clock::now();
         // Keep elements whose centroid lies in the footprint; remove those that are not whole.
@@ -571,6 +520,7 @@ private:
 
     PlanarQuiltOptions opt_;
     SwatchData sw_;
+    quilt::JointSetup joints_;
     TriangleIndex index_;
     quilt::KernelParams params_;
     double cell_ = 1.0;
