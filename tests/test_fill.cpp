@@ -167,6 +167,9 @@ TEST(Coverage, LargestEmptyDiscAreaDensityAndMask) {
     sheet.faces = {{0, 1, 2}, {0, 2, 3}};
     ground.add(sheet);
     EXPECT_NEAR(cov.area_density(Vec2(1.5, 0.5), 10.0, &ground), 1.0, 1e-9);
+    EXPECT_NEAR(ground.covered_share(Vec2(1.5, 0.5), 10.0), 8.0 / 15.0, 1e-9);
+    EXPECT_NEAR(ground.covered_share(Vec2(1.5, 0.5), 0.5), 1.0, 1e-12);
+    EXPECT_NEAR(ground.covered_share(Vec2(-0.9, 1.9), 0.05), 0.0, 1e-12);
     // Beyond the mask counts as covered: distances end at its border.
     auto distance_at = [&](double x, double y) {
         return cov.empty_distance()[static_cast<std::size_t>(cov.row(y)) * static_cast<std::size_t>(cov.nx()) + static_cast<std::size_t>(cov.column(x))];
@@ -176,6 +179,21 @@ TEST(Coverage, LargestEmptyDiscAreaDensityAndMask) {
     EXPECT_EQ(distance_at(1.5, 1.8), 0.0);
     EXPECT_NEAR(distance_at(1.5, 1.2), 0.3, 0.03);  // to the mask's border
     EXPECT_NEAR(distance_at(1.5, 0.5), 0.5, 0.03);  // between the stones, as before
+}
+
+TEST(Coverage, ProjectedDensityIgnoresHeight) {
+    // A stone flattened to a tenth of its height keeps its projected area density (top and bottom
+    // faces: 2 x 1 per stone); by 3D area it would lose the sides' share.
+    Mesh tall = block(2, 0.5, Vec3(0, 0, 0));
+    Mesh flat = tall;
+    for (Vec3& v : flat.vertices) v.z() *= 0.1;
+    quilt::Coverage a(-1.0, -1.0, 2.0, 2.0, 0.02, true), b(-1.0, -1.0, 2.0, 2.0, 0.02, true), c(-1.0, -1.0, 2.0, 2.0, 0.02);
+    a.add(tall);
+    b.add(flat);
+    c.add(flat);
+    EXPECT_NEAR(a.area_density(Vec2(0.5, 0.5), 10.0), 2.0 / 9.0, 1e-9);
+    EXPECT_NEAR(b.area_density(Vec2(0.5, 0.5), 10.0), 2.0 / 9.0, 1e-9);
+    EXPECT_NEAR(c.area_density(Vec2(0.5, 0.5), 10.0), 2.2 / 9.0, 1e-9);  // 3D: sides of height 0.05
 }
 
 TEST(HullSides, ClearanceAlongEachSide) {

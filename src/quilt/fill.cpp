@@ -43,12 +43,13 @@ void distance_1d(const std::vector<double>& f, std::vector<double>& d, std::vect
 
 }  // namespace
 
-Coverage::Coverage(double x0, double y0, double x1, double y1, double pixel)
+Coverage::Coverage(double x0, double y0, double x1, double y1, double pixel, bool projected)
     : x0_(x0), y0_(y0), pixel_(pixel),
       nx_(std::max(1, static_cast<int>(std::ceil((x1 - x0) / pixel)))),
       ny_(std::max(1, static_cast<int>(std::ceil((y1 - y0) / pixel)))),
       covered_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), 0),
-      area_(covered_.size(), 0.0) {}
+      area_(covered_.size(), 0.0),
+      projected_(projected) {}
 
 void Coverage::add(const Mesh& m) {
     for (const Tri& f : m.faces) {
@@ -58,7 +59,8 @@ void Coverage::add(const Mesh& m) {
         {
             const double cx = (p.x() + q.x() + r.x()) / 3.0, cy = (p.y() + q.y() + r.y()) / 3.0;
             const int i = column(cx), j = row(cy);
-            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) area_[static_cast<std::size_t>(j) * nx_ + i] += 0.5 * (q - p).cross(r - p).norm();
+            const Vec3 n = (q - p).cross(r - p);
+            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) area_[static_cast<std::size_t>(j) * nx_ + i] += 0.5 * (projected_ ? std::abs(n.z()) : n.norm());
         }
         const double area = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
         const int i0 = std::max(0, static_cast<int>(std::floor((std::min({p.x(), q.x(), r.x()}) - x0_) / pixel_)));
@@ -127,6 +129,19 @@ std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) con
     return out;
 }
 
+double Coverage::covered_share(const Vec2& c, double radius) const {
+    const int i0 = std::max(0, column(c.x() - radius)), i1 = std::min(nx_ - 1, column(c.x() + radius));
+    const int j0 = std::max(0, row(c.y() - radius)), j1 = std::min(ny_ - 1, row(c.y() + radius));
+    long in = 0, hit = 0;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+            if ((centre(i, j) - c).squaredNorm() <= radius * radius) {
+                ++in;
+                hit += covered(i, j) ? 1 : 0;
+            }
+    return in > 0 ? static_cast<double>(hit) / static_cast<double>(in) : 0.0;
+}
+
 double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask) const {
     const int i0 = std::max(0, column(c.x() - radius)), i1 = std::min(nx_ - 1, column(c.x() + radius));
     const int j0 = std::max(0, row(c.y() - radius)), j1 = std::min(ny_ - 1, row(c.y() + radius));
@@ -141,8 +156,9 @@ double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask
     return in > 0 ? area / (static_cast<double>(in) * pixel_ * pixel_) : 0.0;
 }
 
-FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area) {
+FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area, bool projected) {
     FillSetup s;
+    s.projected = projected;
     s.sparse = sparse;
     s.min_area = min_area;
     if (!sw.elements_disjoint || !(sw.near_gap > 0.0)) return s;
@@ -169,7 +185,13 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
     s.pixel = std::max(0.5 * sw.near_gap, min_pixel);
     const double lx = sw.box.size().x(), ly = sw.box.size().y();
     const double mx = kDensityInset * lx, my = kDensityInset * ly;
-    s.swatch_density = window_density(sw.mesh, mx, my, lx - mx, ly - my);
+    if (projected) {
+        Coverage window(mx, my, lx - mx, ly - my, s.pixel, true);
+        window.add(sw.mesh);
+        s.swatch_density = window.area_density(Vec2(0.5 * lx, 0.5 * ly), lx + ly);
+    } else {
+        s.swatch_density = window_density(sw.mesh, mx, my, lx - mx, ly - my);
+    }
     s.smallest_spot = std::max(largest_empty_radius(sw.mesh, mx, my, lx - mx, ly - my, s.pixel),
                                sw.near_gap + 0.5 * kFillScale * (1.0 - kFillPush) * narrowest);
     return s;

@@ -25,7 +25,9 @@ inline constexpr double kFillWindow = 3.0;
 /// What the xy projections of meshes cover, on a raster of square pixels over a rectangle.
 class Coverage {
 public:
-    Coverage(double x0, double y0, double x1, double y1, double pixel);
+    /// With `projected`, area_density counts each face's area projected onto xy, so that an element
+    /// flattened in height (the surface stage's lowered shell) counts as its footprint does, not less.
+    Coverage(double x0, double y0, double x1, double y1, double pixel, bool projected = false);
 
     /// Marks the pixels whose centres the projection of a face of `m` covers (a face smaller than
     /// a pixel marks the pixel of its centroid; vertical faces cover nothing), and adds each face's
@@ -44,6 +46,8 @@ public:
     /// major over the window.
     [[nodiscard]] std::vector<double> empty_distance(int i0, int j0, int i1, int j1) const;
 
+    /// Share of the pixels with centres in the disc (`c`, `radius`) that are covered (0 without any).
+    [[nodiscard]] double covered_share(const Vec2& c, double radius) const;
     /// Face area (by centroid, see add) per unit area of the pixels with centres in the disc; with
     /// `mask` (a raster of the same rectangle and pixel), of those pixels that it covers.
     [[nodiscard]] double area_density(const Vec2& c, double radius, const Coverage* mask = nullptr) const;
@@ -62,6 +66,7 @@ private:
     int nx_, ny_;
     std::vector<char> covered_;
     std::vector<double> area_;
+    bool projected_ = false;
 };
 
 /// What the bald-spot filler needs of a swatch, in the swatch's units.
@@ -90,12 +95,15 @@ struct FillSetup {
     /// smallest blob's, so fills do not widen the spread of element sizes below the swatch's own.
     double area_floor = 0.0;
     double smallest_blob_area = 0.0;  ///< of the swatch's blobs
+    /// Densities by projected area (see Coverage), the swatch's too: the surface stage, whose lowered
+    /// shell flattens elements.
+    bool projected = false;
 };
 
 /// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
-/// intersect; `min_pixel` bounds the raster's size for large outputs, `sparse` and `min_area` see
-/// FillSetup.
-FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse, double min_area);
+/// intersect; `min_pixel` bounds the raster's size for large outputs, `sparse`, `min_area` and
+/// `projected` see FillSetup.
+FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse, double min_area, bool projected = false);
 
 /// The filling loop (see FillSetup): while the widest empty disc of `cov` centred where `may_centre`
 /// allows is wider than `setup.smallest_spot` and `density` (element area per ground area in a disc)

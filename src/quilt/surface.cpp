@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <complex>
 #include <map>
@@ -54,6 +55,8 @@ constexpr double kFillSparse = 0.85;
 /// ... with a blob that keeps at least this share of its footprint and area (its size, the square
 /// root of the area, stays within the factor 1.5 the stage promises).
 constexpr double kFillMinArea = 0.5;
+/// ... and only where at least this share of the density window lies on the patch.
+constexpr double kFillOnPatch = 0.8;
 
 /// The faces whose corners are all `ok`, with only the vertices they use (an element partly off a
 /// patch: its other vertices have no place in the frame, and a test reading every vertex, such as
@@ -127,7 +130,7 @@ public:
         if (!thin_axis_of(bounding_box(swatch)).is_thin)
             throw InvalidInput("swatch has no thin axis: its smallest extent is more than half the middle one; a swatch must be a slab");
         sw_ = quilt::prepare_swatch(swatch);
-        fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea);
+        fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea, true);
         joints_ = quilt::prepare_joints(sw_);
         fill_.area_floor = fill_.smallest_blob_area;
         index_ = TriangleIndex(sw_.mesh);
@@ -792,7 +795,8 @@ private:
     /// surface at its swatch element's size: where the patch's map scales area, it is rescaled about
     /// its centre in the frame, once (see apply).
     bool embed_sized(const Mesh& m, int source, bool fresh, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs,
-                     double local, const Reach* reach, std::vector<SurfacePoint>* anchors, Mesh* embedded) const {
+                     double local, const Reach* reach, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr) const {
+        if (resize) *resize = 1.0;
         if (!to_surface(m, flat, locator, hs, anchors, reach)) return false;
         *embedded = embed_element(*anchors, m.faces);
         if (!fresh || source < 0 || height_scale_ > 0) return true;
@@ -801,14 +805,13 @@ private:
         const double want = mesh_area(m) * scale_ * scale_ * local * local;
         const double ratio = mesh_area(*embedded) / std::max(want, 1e-300);
         if (ratio < kMaxSizeDrift && ratio > 1.0 / kMaxSizeDrift) return true;
-        Mesh fixed = m;
-        const Vec3 c = area_centroid(m);
         const double f = 1.0 / std::sqrt(ratio);
-        for (Vec3& v : fixed.vertices) v = Vec3(c.x() + f * (v.x() - c.x()), c.y() + f * (v.y() - c.y()), v.z());
+        const Mesh fixed = resized_in_frame(m, f);
         std::vector<SurfacePoint> a2;
         if (!to_surface(fixed, flat, locator, hs, &a2)) return true;
         *anchors = std::move(a2);
         *embedded = embed_element(*anchors, m.faces);
+        if (resize) *resize = f;
         return true;
     }
 
@@ -900,15 +903,19 @@ private:
                     double fx1, double fy1) {
         if (fill_.shapes.empty()) return;
         const double r = fill_.reach;
-        quilt::Coverage cov(fx0 - r, fy0 - r, fx1 + r, fy1 + r, fill_.pixel), ground(fx0 - r, fy0 - r, fx1 + r, fy1 + r, fill_.pixel);
+        quilt::Coverage cov(fx0 - r, fy0 - r, fx1 + r, fy1 + r, fill_.pixel, fill_.projected), ground(fx0 - r, fy0 - r, fx1 + r, fy1 + r, fill_.pixel);
         Mesh patch;  // the flattened patch, for the ground raster
         for (const Vec2& q : flat.uv) patch.vertices.emplace_back(q.x(), q.y(), 0.0);
         patch.faces = flat.local;
         ground.add(patch);
         std::vector<std::vector<Vec2>> hulls;
         std::vector<Box3> boxes;
+        std::deque<Mesh> standing;  // frame meshes, for the clearance of fills (stable addresses)
+        std::vector<const Mesh*> standing_ptrs;
         auto stand = [&](const Mesh& m) {
             if (m.faces.empty()) return;
+            standing.push_back(m);
+            standing_ptrs.push_back(&standing.back());
             cov.add(m);
             hulls.push_back(quilt::xy_hull(m));
             boxes.push_back(bounding_box(m));
@@ -922,7 +929,12 @@ private:
             [&](const Vec2& c) {
                 return c.x() >= fx0 && c.y() >= fy0 && c.x() < fx1 && c.y() < fy1 && ground.covered(ground.column(c.x()), ground.row(c.y()));
             },
-            [&](const Vec2& c, double radius) { return cov.area_density(c, radius, &ground); },
+            [&](const Vec2& c, double radius) {
+                // Judged on the patch only: a window mostly off it says little (and, read as sparse,
+                // filled pebbles on the armadillo's small patches up to 1.28 of the swatch's density).
+                if (ground.covered_share(c, radius) < kFillOnPatch) return std::numeric_limits<double>::infinity();
+                return cov.area_density(c, radius, &ground);
+            },
             [&](const Vec2& c, double radius) {
                 std::vector<std::vector<Vec2>> out;
                 Box3 at;
@@ -933,7 +945,10 @@ private:
                 return out;
             },
             [&](const Mesh& m, int source) {
-                if (!embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded)) return false;
+                double resize = 1.0;
+                if (!embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded, &resize)) return false;
+                // Resized for the surface, it keeps the clearance at that scale (see apply).
+                if (resize != 1.0 && !keeps_clearance(resized_in_frame(m, resize), source, standing_ptrs, nullptr, resize)) return false;
                 // On the surface it keeps kFillMinArea of its swatch element's area (where the map
                 // shrinks ground that the rescaled element cannot fit on, embed_sized keeps it as is).
                 const double want = mesh_area(sw_.elements[static_cast<std::size_t>(source)]) * scale_ * scale_ * local * local;
@@ -959,6 +974,7 @@ private:
             const quilt::PatchPlan::Change* change;
             std::vector<SurfacePoint> anchors, fallback_anchors;
             Mesh embedded, fallback;
+            double resize = 1.0;  ///< the element's scale in the frame for its size on the surface (embed_sized)
         };
         // A new element goes onto the surface at its swatch element's size: where the patch's map
         // scales area (LSCM is conformal, not area preserving; normal displacement fans out over
@@ -972,11 +988,12 @@ private:
             return true;
         };
         const Reach* reach = nullptr;  // of the old element of the change being placed
-        auto place_sized = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded) {
-            return embed_sized(m, source, fresh, flat, locator, hs, local, reach, anchors, embedded);
+        auto place_sized = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded,
+                               double* resize = nullptr) {
+            return embed_sized(m, source, fresh, flat, locator, hs, local, reach, anchors, embedded, resize);
         };
-        auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded) {
-            if (!place_sized(m, source, fresh, anchors, embedded)) return false;
+        auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr) {
+            if (!place_sized(m, source, fresh, anchors, embedded, resize)) return false;
             return !folded(*embedded);
         };
         std::vector<Candidate> pending;
@@ -986,7 +1003,7 @@ private:
             const bool fresh = ch.kind == Kind::Added || ch.kind == Kind::Replaced;
             const auto r = reach_.find(ch.old_id);
             reach = ch.old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
-            const bool placed = place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded);
+            const bool placed = place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded, &c.resize);
             reach = nullptr;
             if (!placed) continue;
             if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback)) c.fallback = Mesh();
@@ -994,9 +1011,9 @@ private:
         }
         // Beyond the paper: an added blob keeps the swatch's clearance from the old elements around it,
         // as in the planar stage; one that does not goes to nudging. (Without it, pebbles came out up
-        // to 19% denser than the swatch on the eight.) Not from the changes applied before it: with
-        // them, the same seed gave different outputs under load (two runs of the eight with rivets
-        // diverged in the 48th patch; the kernel's merged meshes are not bit-stable across runs).
+        // to 19% denser than the swatch on the eight.) Where the patch's map shrinks ground, the
+        // element goes in enlarged in the frame (embed_sized) and the clearance it needs there grows
+        // with it: both are measured at that scale.
         std::vector<const Mesh*> around;
         for (const auto& oe : old) around.push_back(&oe.mesh);
         for (const Mesh& m : obstacles) around.push_back(&m);
@@ -1005,7 +1022,7 @@ private:
             const std::size_t before = pending.size();
             for (auto& c : pending) {
                 const auto* ch = c.change;
-                if (ch->kind == Kind::Added && !keeps_clearance(ch->mesh, ch->source, around)) {
+                if (ch->kind == Kind::Added && !keeps_clearance(resized_in_frame(ch->mesh, c.resize), ch->source, around, nullptr, c.resize)) {
                     refused.push_back(std::move(c));
                     continue;
                 }
@@ -1065,13 +1082,23 @@ private:
     /// Does frame mesh `m` of swatch element `source` keep the swatch's clearance (near_gap, vertex
     /// to vertex) from each of `standing` other than `self`? Rings (genus >= 1) interlock and threads
     /// cross: they are not held to it.
-    bool keeps_clearance(const Mesh& m, int source, const std::vector<const Mesh*>& standing, const Mesh* self = nullptr) const {
+    bool keeps_clearance(const Mesh& m, int source, const std::vector<const Mesh*>& standing, const Mesh* self = nullptr, double scale = 1.0) const {
         if ((source >= 0 && sw_.element_genus[static_cast<std::size_t>(source)] > 0) || !(sw_.near_gap > 0.0) || quilt::is_elongated(m))
             return true;
         const Box3 box = bounding_box(m);
+        const double gap = scale * sw_.near_gap;
         for (const Mesh* o : standing)
-            if (o != self && !o->faces.empty() && quilt::element_gap(m, box, *o, sw_.near_gap) < sw_.near_gap) return false;
+            if (o != self && !o->faces.empty() && quilt::element_gap(m, box, *o, gap) < gap) return false;
         return true;
+    }
+
+    /// `m` scaled by `f` in xy about its area centroid (as embed_sized resizes it).
+    static Mesh resized_in_frame(const Mesh& m, double f) {
+        if (f == 1.0) return m;
+        Mesh out = m;
+        const Vec3 c = area_centroid(m);
+        for (Vec3& v : out.vertices) v = Vec3(c.x() + f * (v.x() - c.x()), c.y() + f * (v.y() - c.y()), v.z());
+        return out;
     }
 
     /// Tries the small moves of a colliding addition (see apply); true when one was added.
