@@ -156,6 +156,12 @@ double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask
     return in > 0 ? area / (static_cast<double>(in) * pixel_ * pixel_) : 0.0;
 }
 
+bool is_blob_source(const SwatchData& sw, int source) {
+    if (source < 0 || static_cast<std::size_t>(source) >= sw.elements.size()) return false;
+    const auto s = static_cast<std::size_t>(source);
+    return sw.element_closed[s] && sw.element_genus[s] == 0 && !is_elongated(sw.elements[s]);
+}
+
 FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area, bool projected) {
     FillSetup s;
     s.projected = projected;
@@ -165,7 +171,7 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
     double narrowest = 1e300;
     for (std::size_t e = 0; e < sw.elements.size(); ++e) {
         const Mesh& m = sw.elements[e];
-        if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(m)) continue;
+        if (!is_blob_source(sw, static_cast<int>(e))) continue;
         const Vec3 c = area_centroid(m);
         const Vec3 size = bounding_box(m).size();
         s.smallest_blob_area = s.smallest_blob_area > 0.0 ? std::min(s.smallest_blob_area, mesh_area(m)) : mesh_area(m);
@@ -307,7 +313,7 @@ JointSetup prepare_joints(const SwatchData& sw) {
     std::vector<std::size_t> blobs;
     double reach = 0.0;
     for (std::size_t e = 0; e < sw.elements.size(); ++e) {
-        if (!sw.element_closed[e] || sw.element_genus[e] != 0 || is_elongated(sw.elements[e])) continue;
+        if (!is_blob_source(sw, static_cast<int>(e))) continue;
         blobs.push_back(e);
         reach = std::max(reach, 0.5 * bounding_box(sw.elements[e]).size().head<2>().norm());
     }

@@ -69,6 +69,10 @@ private:
     bool projected_ = false;
 };
 
+/// Is swatch element `source` a blob: closed, genus 0 and not a thread (a pebble, a stone, a rivet
+/// head; not a ring)? False for -1 (no swatch element).
+bool is_blob_source(const SwatchData& swatch, int source);
+
 /// What the bald-spot filler needs of a swatch, in the swatch's units.
 struct FillSetup {
     struct Shape {

@@ -50,7 +50,6 @@ using quilt::kDensityInset;
 using quilt::kMaxOutputFaces;
 using quilt::seconds_since;
 
-
 /// Output grid with a margin of cells around the footprint, so that placements near the border
 /// keep track of what they cover.
 struct Grid {
@@ -430,14 +429,10 @@ private:
     void close_wide_joints() {
         if (!joints_.paving) return;
         auto t0 = Clock::now();
-        auto is_blob = [&](int source) {
-            const auto s = static_cast<std::size_t>(source);
-            return source >= 0 && sw_.element_closed[s] && sw_.element_genus[s] == 0 && !quilt::is_elongated(sw_.elements[s]);
-        };
         const double reach = joints_.reach, limit = joints_.limit;
         std::vector<int> ids;
         for (std::size_t id = 0; id < elems_.size(); ++id)
-            if (elems_[id].alive && is_blob(elems_[id].source)) ids.push_back(static_cast<int>(id));
+            if (elems_[id].alive && quilt::is_blob_source(sw_, elems_[id].source)) ids.push_back(static_cast<int>(id));
         for (int id : ids) {
             const OutputElement& el = elems_[static_cast<std::size_t>(id)];
             const Box3 box = bounding_box(el.mesh);

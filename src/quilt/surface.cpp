@@ -20,9 +20,9 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <deque>
 #include <cmath>
 #include <complex>
+#include <deque>
 #include <map>
 #include <random>
 #include <unordered_map>
@@ -517,11 +517,7 @@ private:
         t0 = Clock::now();
 
         // Old elements in the patch frame: whole ones for the kernel, partial ones as obstacles.
-        std::vector<int> near;
-        for (int f : flat.faces)
-            for (int id : elems_on_face_[static_cast<std::size_t>(f)]) near.push_back(id);
-        std::sort(near.begin(), near.end());
-        near.erase(std::unique(near.begin(), near.end()), near.end());
+        const std::vector<int> near = near_elements(flat);
         auto map_point = [&](const SurfacePoint& sp, Vec3* out) { return map_to_frame(flat, hs, sp, out); };
         std::vector<quilt::OldElement> old;
         std::vector<Mesh> obstacles;  // mappable triangles of partial elements
@@ -822,12 +818,17 @@ private:
         Mesh mesh;
         bool whole = false;
     };
-    std::vector<FrameElement> frame_elements(const quilt::FlatPatch& flat, double hs) const {
+    /// Ids of the output elements on the patch's faces, ascending.
+    std::vector<int> near_elements(const quilt::FlatPatch& flat) const {
         std::vector<int> near;
         for (int f : flat.faces)
             for (int id : elems_on_face_[static_cast<std::size_t>(f)]) near.push_back(id);
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
+        return near;
+    }
+    std::vector<FrameElement> frame_elements(const quilt::FlatPatch& flat, double hs) const {
+        const std::vector<int> near = near_elements(flat);
         std::vector<FrameElement> out;
         for (int id : near) {
             const SurfElement& e = elems_[static_cast<std::size_t>(id)];
@@ -858,9 +859,7 @@ private:
         for (std::size_t k = 0; k < in.size(); ++k) {
             const SurfElement& e = elems_[static_cast<std::size_t>(in[k].id)];
             const int source = e.source;
-            if (!in[k].whole || source < 0 || !sw_.element_closed[static_cast<std::size_t>(source)] ||
-                sw_.element_genus[static_cast<std::size_t>(source)] != 0 || quilt::is_elongated(in[k].mesh))
-                continue;
+            if (!in[k].whole || !quilt::is_blob_source(sw_, source)) continue;
             const Vec3 mid = 0.5 * (boxes[k].min + boxes[k].max);
             if (mid.x() < fx0 || mid.y() < fy0 || mid.x() >= fx1 || mid.y() >= fy1) continue;
             std::vector<std::vector<Vec2>> around;
