@@ -435,6 +435,49 @@ TEST(ShellMap, ElementSizesAsEvenAsWithNormalDisplacement) {
     }
 }
 
+// Where the shell is lowered the map flattens elements; they keep their width (the size correction
+// undoes only the map's lateral scale, not the area that flattening takes), so flattened rings are
+// no wider than the others. A comb of narrow slots lowers the shell over much of the base.
+TEST(ShellMap, FlattenedElementsKeepTheirWidth) {
+    std::vector<std::array<int, 3>> cells;
+    for (int x = 0; x < 13; ++x)
+        for (int y = 0; y < 5; ++y)
+            for (int z = 0; z < 3; ++z)
+                if (!(x % 3 == 2 && z >= 1)) cells.push_back({x, y, z});
+    const Mesh base = shapes::voxels(cells);
+    const Mesh swatch = mq::read_mesh(swatch_path("chainmail"));
+    mq::SurfaceQuiltOptions o;
+    o.swatch_size = 4.5;
+    const auto r = mq::quilt_surface(base, swatch, o);
+    ASSERT_GT(r.surface.shell.height_limited_vertices, 0);
+    int count = 0;
+    const std::vector<Mesh> source = mq::test::split_elements(swatch, mq::connected_components(swatch, &count));
+    const double s = r.surface.base_scale;
+    const mq::test::Solid solid(base);
+    std::vector<double> flattened, upright;  // diameter over the swatch element's at scale
+    const auto parts = mq::test::split_elements(r.mesh, r.element_of_face);
+    for (std::size_t e = 0; e < parts.size(); ++e) {
+        const Mesh& src = source[static_cast<std::size_t>(r.source_element[e])];
+        double top = 0.0;
+        for (const Vec3& v : parts[e].vertices) top = std::max(top, solid.distance(v));
+        const double height = mq::bounding_box(src).size().z() * s;
+        const double width = diameter(parts[e]) / (diameter(src) * s);
+        if (top < 0.6 * height) flattened.push_back(width);
+        else if (top > 0.95 * height) upright.push_back(width);
+    }
+    ASSERT_GE(flattened.size(), 10U);
+    ASSERT_GE(upright.size(), 10U);
+    auto median = [](std::vector<double> v) {
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    std::cerr << "comb: " << flattened.size() << " elements flattened below 60% of their height, median width " << median(flattened)
+              << "; " << upright.size() << " upright, median width " << median(upright) << "\n";
+    EXPECT_LE(median(flattened), 1.05 * median(upright));
+    EXPECT_EQ(r.surface.elements_below_base, 0);
+    EXPECT_EQ(r.surface.vertices_above_shell, 0);
+}
+
 // A zero-area face (collinear corners) does not stop the shell, and every point still maps to a
 // finite position (the face's prism is flat; its points follow the offset directions).
 TEST(ShellMap, ZeroAreaFaceMapsToFinitePositions) {

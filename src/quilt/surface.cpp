@@ -359,6 +359,17 @@ private:
 
     double height_scale(double local) const { return height_scale_ > 0 ? height_scale_ : scale_ * local; }
 
+    /// The shell's height over a surface point as a fraction of the full height (1 without a shell):
+    /// where the shell was lowered, texture height h lands about h times this above the base.
+    double shell_ratio(const SurfacePoint& sp) const {
+        if (!shell_) return 1.0;
+        const std::vector<double>& h = shell_->heights();
+        const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
+        double r = 0.0;
+        for (int k = 0; k < 3; ++k) r += sp.bary[k] * h[static_cast<std::size_t>(t[k])];
+        return std::clamp(r / surface_.shell_height, 1e-6, 1.0);
+    }
+
     Vec3 embed(const SurfacePoint& sp) const {
         if (shell_) return shell_->map(sp);
         const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
@@ -798,8 +809,26 @@ private:
         if (!fresh || source < 0 || height_scale_ > 0) return true;
         // What the map did to this element's area (not what deformation did: that was the kernel's
         // choice, bounded there).
-        const double want = mesh_area(m) * scale_ * scale_ * local * local;
-        const double ratio = mesh_area(*embedded) / std::max(want, 1e-300);
+        const double at_scale = scale_ * scale_ * local * local;
+        double ratio = mesh_area(*embedded) / std::max(mesh_area(m) * at_scale, 1e-300);
+        if (shell_) {
+            // Where the shell was lowered the map flattens the element (by design: the base leaves
+            // no room), and its area shrinks with its height; widening it for that made it larger
+            // across than its neighbours. The area is taken with the lowering undone: each vertex's
+            // offset from its foot on the base divided by the shell's ratio there. (Unchanged where
+            // the shell keeps its full height.)
+            Mesh upright = *embedded;
+            bool lowered = false;
+            for (std::size_t v = 0; v < anchors->size(); ++v) {
+                const SurfacePoint& sp = (*anchors)[v];
+                const double r = shell_ratio(sp);
+                if (r > 1.0 - 1e-9) continue;
+                lowered = true;
+                const Vec3 foot = embed({sp.face, sp.bary, 0.0});
+                upright.vertices[v] = foot + (upright.vertices[v] - foot) / r;
+            }
+            if (lowered) ratio = mesh_area(upright) / std::max(mesh_area(m) * at_scale, 1e-300);
+        }
         if (ratio < kMaxSizeDrift && ratio > 1.0 / kMaxSizeDrift) return true;
         const double f = 1.0 / std::sqrt(ratio);
         const Mesh fixed = resized_in_frame(m, f);
