@@ -506,4 +506,26 @@ TEST(ShellMap, PointsBeyondAnEdgeContinueOntoTheNeighbour) {
             worst = std::max(worst, solid.distance(s.map({static_cast<int>(f), bary, 0.0})));
         }
     EXPECT_LT(worst, 1e-9);
+    // Beyond a corner (two coordinates negative, as a patch border gives near a vertex): the point
+    // walks round the corner's fan onto the face that holds it, on the base, not off it. A spindle
+    // (two cones on a ring of 8) has corners whose fans take more than three steps.
+    Mesh spindle;
+    const int n = 8;
+    for (int i = 0; i < n; ++i) spindle.vertices.emplace_back(std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0.0);
+    spindle.vertices.emplace_back(0.0, 0.0, 1.0);
+    spindle.vertices.emplace_back(0.0, 0.0, -1.0);
+    for (int i = 0; i < n; ++i) {
+        spindle.faces.push_back({n, i, (i + 1) % n});
+        spindle.faces.push_back({n + 1, (i + 1) % n, i});
+    }
+    const mq::ShellMap spindle_shell(spindle, {0.05});
+    const mq::test::Solid spindle_solid(spindle);
+    worst = 0.0;
+    for (std::size_t f = 0; f < spindle.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            Vec3 bary = Vec3::Constant(-0.1);
+            bary[k] = 1.2;
+            worst = std::max(worst, spindle_solid.distance(spindle_shell.map({static_cast<int>(f), bary, 0.0})));
+        }
+    EXPECT_LT(worst, 1e-9);
 }

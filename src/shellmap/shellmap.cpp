@@ -794,9 +794,10 @@ ShellMap& ShellMap::operator=(ShellMap&&) noexcept = default;
 
 SurfacePoint ShellMap::Impl::unfold(SurfacePoint sp) const {
     // A point given beyond its face's edge (extrapolated coordinates) continues onto the face across
-    // that edge, turned about the edge into its plane, up to three faces on: extrapolating in the
-    // face's own plane would put it under the neighbour at a convex edge.
-    for (int step = 0; step < 3; ++step) {
+    // that edge, turned about the edge into its plane, up to 64 faces on (a point beyond a
+    // corner walks round the corner's fan): extrapolating in the face's own plane would put it
+    // under the neighbour at a convex edge, and into the base where the surface curves up.
+    for (int step = 0; step < 64; ++step) {
         int k = 0;
         sp.bary.minCoeff(&k);
         if (sp.bary[k] >= 0) break;
