@@ -464,6 +464,10 @@ TEST(ShellMap, FlattenedElementsKeepTheirWidth) {
         const double width = diameter(parts[e]) / (diameter(src) * s);
         if (top < 0.6 * height) flattened.push_back(width);
         else if (top > 0.95 * height) upright.push_back(width);
+        // No element is shrunk or widened out of the bound (where the shell is nearly flat
+        // an unflattening that scaled sideways offsets back up once shrank rings threefold).
+        EXPECT_GT(width, 1.0 / 1.5) << "element " << e << " (height " << top / height << " of its own)";
+        EXPECT_LT(width, 1.5) << "element " << e << " (height " << top / height << " of its own)";
     }
     ASSERT_GE(flattened.size(), 10U);
     ASSERT_GE(upright.size(), 10U);

@@ -814,18 +814,22 @@ private:
         if (shell_) {
             // Where the shell was lowered the map flattens the element (by design: the base leaves
             // no room), and its area shrinks with its height; widening it for that made it larger
-            // across than its neighbours. The area is taken with the lowering undone: each vertex's
-            // offset from its foot on the base divided by the shell's ratio there. (Unchanged where
-            // the shell keeps its full height.)
+            // across than its neighbours. The area is taken with the lowering undone: a vertex over
+            // a lowered spot is put at its texture height along the base's normal from its foot.
+            // (Unchanged where the shell keeps its full height. The normal, not the vertex's offset
+            // from its foot scaled back up: the optimisation moves offset corners sideways, and
+            // where the shell is nearly flat that offset is mostly sideways.)
             Mesh upright = *embedded;
             bool lowered = false;
             for (std::size_t v = 0; v < anchors->size(); ++v) {
                 const SurfacePoint& sp = (*anchors)[v];
-                const double r = shell_ratio(sp);
-                if (r > 1.0 - 1e-9) continue;
+                if (shell_ratio(sp) > 1.0 - 1e-9) continue;
                 lowered = true;
-                const Vec3 foot = embed({sp.face, sp.bary, 0.0});
-                upright.vertices[v] = foot + (upright.vertices[v] - foot) / r;
+                const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
+                Vec3 n = Vec3::Zero();
+                for (int k = 0; k < 3; ++k) n += sp.bary[k] * base_.normal[static_cast<std::size_t>(t[k])];
+                if (!(n.norm() > 0)) continue;
+                upright.vertices[v] = embed({sp.face, sp.bary, 0.0}) + sp.height * n.normalized();
             }
             if (lowered) ratio = mesh_area(upright) / std::max(mesh_area(m) * at_scale, 1e-300);
         }
