@@ -1223,13 +1223,25 @@ private:
                 if (hit.bary[k] < kOn) ++zero;
                 if (hit.bary[k] > 1.0 - kOn) one = k;
             }
+            // Closest to an open boundary (an edge or corner of the rim): the point hangs over the
+            // rim, where the base has no inside to cut into.
+            auto on_rim = [&](int vertex) {
+                for (int g : base_.vertex_faces[static_cast<std::size_t>(vertex)]) {
+                    const Tri& t = base_.mesh.faces[static_cast<std::size_t>(g)];
+                    for (int k = 0; k < 3; ++k)
+                        if (base_.nb[static_cast<std::size_t>(g)][static_cast<std::size_t>(k)] < 0 && (t[k] == vertex || t[(k + 1) % 3] == vertex)) return true;
+                }
+                return false;
+            };
             Vec3 n = index.face_normal(hit.face);
             if (zero == 1) {
                 int k = 0;
                 hit.bary.minCoeff(&k);
                 const int g = base_.nb[f][static_cast<std::size_t>((k + 1) % 3)];
-                if (g >= 0) n += index.face_normal(g);
+                if (g < 0) return;
+                n += index.face_normal(g);
             } else if (zero >= 2) {
+                if (on_rim(base_.mesh.faces[f][one])) return;
                 n = angle_weighted(base_.mesh.faces[f][one]);
             }
             below[v] = (p - hit.point).dot(n) < 0;
