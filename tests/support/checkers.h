@@ -5,6 +5,7 @@
 /// first offending face, edge, vertex or element, so `EXPECT_TRUE(is_closed_manifold(m))` says
 /// what is wrong. Also: element splitting and Gauss linking numbers for ring-like elements.
 
+#include "core/links.h"
 #include "meshquilt/mesh.h"
 
 #include <gtest/gtest.h>
@@ -39,18 +40,9 @@ namespace meshquilt::test {
 /// in order of first use; faces keep their order.
 std::vector<Mesh> split_elements(const Mesh& mesh, const std::vector<int>& element_of_face);
 
-/// The centre line of a ring-like element (a torus, a chain link, even somewhat bent): the vertices
-/// used by faces are projected onto the element's PCA plane, binned by angle around their centroid,
-/// and averaged (in 3D) per bin. Returns one point per non-empty bin, in angular order, as a closed
-/// polygon (the last point connects back to the first).
-std::vector<Vec3> ring_centerline(const Mesh& ring, int bins = 48);
-
-/// Gauss linking number of two closed polygons (each given by its vertices; the closing segment is
-/// implied), by the exact formula for polygonal curves (Klenin & Langowski 2000, Eq. 4-5): the
-/// sum over segment pairs of the signed solid angle of the quadrilateral they span, over 4 pi.
-/// Within rounding of an integer for curves that do not intersect. The sign depends on the
-/// orientations of the curves. \throw std::invalid_argument fewer than 3 points in a curve
-double linking_number(const std::vector<Vec3>& closed_a, const std::vector<Vec3>& closed_b);
+/// Ring centre lines and linking numbers live in the library (core/links.h).
+using meshquilt::linking_number;
+using meshquilt::ring_centerline;
 
 /// The linking number of the centre lines of two ring-like elements, rounded to an integer.
 int rounded_linking(const Mesh& ring_a, const Mesh& ring_b);
