@@ -303,34 +303,52 @@ TEST(Surface, SeveralComponentsAreAllCovered) {
     EXPECT_GT(near_large, 10);
 }
 
+/// The output's rings and how many others each interlocks with (|linking number| 1, pairs within
+/// 1.5 of the swatch's widest ring at the run's scale); `diameter` gets that width.
+struct RingLinks {
+    std::vector<Mesh> rings;
+    std::vector<int> links;  ///< per ring
+    double diameter = 0.0;
+};
+RingLinks ring_links(const SurfaceRun& run) {
+    RingLinks out;
+    const Mesh sw = mq::normalize_swatch(run.swatch);
+    int n = 0;
+    const std::vector<int> comp = mq::connected_components(sw, &n);
+    for (const Mesh& r : mq::test::split_elements(sw, comp)) {
+        const mq::Box3 b = mq::bounding_box(r);
+        out.diameter = std::max({out.diameter, b.size().x(), b.size().y()});
+    }
+    out.diameter *= run.r.surface.base_scale;
+    out.rings = mq::test::split_elements(run.r.mesh, run.r.element_of_face);
+    const auto links = mq::test::link_counts(out.rings, 1.5 * out.diameter);
+    for (std::size_t i = 0; i < out.rings.size(); ++i) out.links.push_back(links.count(static_cast<int>(i)) ? links.at(static_cast<int>(i)) : 0);
+    return out;
+}
+
+/// "k rings with c links; ..." for a histogram of link counts.
+std::string link_histogram_text(const std::map<int, int>& histogram) {
+    std::string h;
+    for (const auto& [c, k] : histogram) h += std::to_string(k) + " rings with " + std::to_string(c) + " links; ";
+    return h;
+}
+
 TEST(Surface, ChainMailOnACylinderStaysChainMail) {
     // Away from the rims, most rings interlock with as many rings as the swatch's interior rings (4).
     const Mesh swatch = mq::read_mesh(swatch_path("chainmail"));
     const SurfaceRun run = quilt(shapes::open_cylinder(1.0, 2.0, 64, 32), swatch, 0.2);
     expect_whole_and_disjoint(run);
-    double diameter = 0.0;
-    const Mesh sw = mq::normalize_swatch(swatch);
-    int n = 0;
-    const std::vector<int> comp = mq::connected_components(sw, &n);
-    for (const Mesh& r : mq::test::split_elements(sw, comp)) {
-        const mq::Box3 b = mq::bounding_box(r);
-        diameter = std::max({diameter, b.size().x(), b.size().y()});
-    }
-    diameter *= run.r.surface.base_scale;
-    const auto rings = mq::test::split_elements(run.r.mesh, run.r.element_of_face);
-    const auto links = mq::test::link_counts(rings, 1.5 * diameter);
+    const RingLinks rl = ring_links(run);
     int interior = 0, four = 0;
     std::map<int, int> histogram;
-    for (std::size_t i = 0; i < rings.size(); ++i) {
-        const double z = element_centroid(rings[i]).z();
-        if (z < 1.5 * diameter || z > 2.0 - 1.5 * diameter) continue;
+    for (std::size_t i = 0; i < rl.rings.size(); ++i) {
+        const double z = element_centroid(rl.rings[i]).z();
+        if (z < 1.5 * rl.diameter || z > 2.0 - 1.5 * rl.diameter) continue;
         ++interior;
-        const int c = links.count(static_cast<int>(i)) ? links.at(static_cast<int>(i)) : 0;
-        ++histogram[c];
-        four += c == 4;
+        ++histogram[rl.links[i]];
+        four += rl.links[i] == 4;
     }
-    std::string h;
-    for (const auto& [c, k] : histogram) h += std::to_string(k) + " rings with " + std::to_string(c) + " links; ";
+    const std::string h = link_histogram_text(histogram);
     ASSERT_GT(interior, 50);
     RecordProperty("links", h);
     std::printf("cylinder chain mail: %s\n", h.c_str());
@@ -338,6 +356,51 @@ TEST(Surface, ChainMailOnACylinderStaysChainMail) {
     // Rings that collided where the kernel put them were nudged into place (measured: 824 of 917
     // rings linked with 4 without nudging).
     EXPECT_GT(run.r.surface.elements_nudged, 0);
+}
+
+TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
+    // On the eight (genus 2) neighbouring patches' ring lattices meet at angles; each new lattice is
+    // turned to continue the old rings at its seed, and empty slots along the seams get the ring the
+    // swatch has there (docs/surface.md). Rings stay linked: a mended ring sits where one lattice has it.
+    const Mesh swatch = mq::read_mesh(swatch_path("chainmail"));
+    const SurfaceRun run = quilt(mq::read_mesh(surface_data_path("eight.obj")), swatch, 0.2);
+    expect_whole_and_disjoint(run);
+    expect_element_sizes(run, 1.5);
+    const RingLinks rl = ring_links(run);
+    std::map<int, int> histogram;
+    for (int c : rl.links) ++histogram[c];
+    const std::string h = link_histogram_text(histogram);
+    const auto [lo, hi] = region_density(run);
+    std::printf("eight chain mail: %d mended, region density %.3f - %.3f; %s\n", run.r.surface.elements_mended, lo, hi, h.c_str());
+    RecordProperty("links", h);
+    // Measured at seed 1: 738 rings, 90 mended, 63 loose rings removed; 250 linked with 4, none
+    // with none; region density 0.666-0.823. Before (no turn, no mending): 667 rings, 132 linked
+    // with 4, 83 with none, 0.646-0.796 (all but the last bound fail). Issue 3 asks for 0.85.
+    const auto count = static_cast<double>(rl.rings.size());
+    EXPECT_GT(run.r.surface.elements_mended, 20);
+    EXPECT_GT(run.r.surface.rings_unlinked_removed, 0);
+    EXPECT_GE(histogram[4], 0.3 * count) << h;
+    EXPECT_EQ(histogram[0], 0) << "a ring of the chain mail is loose; " << h;
+    EXPECT_GE(count, 700);
+    EXPECT_GE(lo, 0.64);
+}
+
+TEST(Surface, RingsThatDoNotInterlockInTheSwatchAreKept) {
+    // A swatch of washers side by side (tori that link with nothing): their lattice is continued and
+    // mended like chain mail's, but no ring is removed for being unlinked.
+    Mesh swatch;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            swatch = shapes::concat(swatch, shapes::translated(shapes::torus(1.0, 0.25, 24, 12), Vec3(1.5 + 3.0 * i, 1.5 + 3.0 * j, 0.25)));
+    const SurfaceRun run = quilt(isect::icosphere(1.0, 3), swatch, 0.25);
+    expect_whole_and_disjoint(run);
+    expect_element_sizes(run, 1.5);
+    EXPECT_EQ(run.r.surface.rings_unlinked_removed, 0);
+    EXPECT_GT(run.r.surface.elements_mended, 0);
+    const auto [lo, hi] = region_density(run);
+    std::printf("sphere washers: %d mended, region density %.3f - %.3f\n", run.r.surface.elements_mended, lo, hi);
+    EXPECT_GE(lo, 0.85);
+    EXPECT_LE(hi, 1.15);
 }
 
 TEST(Surface, InsideOutBaseIsFlippedWithAWarningAndDecoratedOutside) {

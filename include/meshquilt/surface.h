@@ -87,6 +87,8 @@ struct SurfaceQualityReport {
     int threads_extended = 0;      ///< old threads reaching beyond a patch, handed to the kernel with their far part carried along
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
+    int elements_mended = 0;       ///< rings put into empty lattice slots after the last patch (seams of ring lattices)
+    int rings_unlinked_removed = 0;  ///< interlocking swatches: rings that linked with no other ring, removed before mending
     int symmetry = 0;              ///< N of the N-direction field used
     double base_scale = 0.0;       ///< base units per swatch unit
     double swatch_density = 0.0;   ///< element area per footprint area in the swatch

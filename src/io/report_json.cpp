@@ -101,6 +101,8 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"threads_extended", s.threads_extended},
                         {"elements_folded", s.elements_folded},
                         {"elements_nudged", s.elements_nudged},
+                        {"elements_mended", s.elements_mended},
+                        {"rings_unlinked_removed", s.rings_unlinked_removed},
                         {"symmetry", s.symmetry},
                         {"base_units_per_swatch_unit", s.base_scale},
                         {"region_density_min", s.region_density_min},
