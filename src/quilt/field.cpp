@@ -130,6 +130,42 @@ std::vector<int> face_components(const std::vector<std::array<int, 3>>& nb, int*
     return comp;
 }
 
+/// Turns each component's smoothest field as a whole (its smoothness does not change: the
+/// energy is invariant under a constant rotation) to follow the component's open boundary as well
+/// as it can: by the length-weighted mean, in N-th powers, of the boundary edges' directions
+/// against the field on their faces. Applied only where those directions agree (the mean keeps at
+/// least a third of the total length): along the rims of a tube, not around a round hole (whose
+/// directions cancel). Sharp edges were tried too and left out: on the coarse eight 8 edges just
+/// above 45 degrees turned the whole field, and its test outputs moved by chance (pebbles 1.09 ->
+/// 1.17 of the swatch's density in one region).
+void align_to_edges(const Mesh& m, const std::vector<std::array<int, 3>>& nb, const std::vector<Frame>& fr, int N,
+                    const std::vector<int>& comp, int ncomp, Eigen::VectorXd* x) {
+    std::vector<std::complex<double>> sum(static_cast<std::size_t>(ncomp), 0.0);
+    std::vector<double> weight(static_cast<std::size_t>(ncomp), 0.0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            if (nb[f][static_cast<std::size_t>(k)] >= 0) continue;  // not a boundary edge
+            const Vec3 e = m.vertices[m.faces[f][(k + 1) % 3]] - m.vertices[m.faces[f][k]];
+            const double len = e.norm();
+            if (!(len > 0)) continue;
+            const std::complex<double> z(x->coeff(static_cast<Eigen::Index>(2 * f)), x->coeff(static_cast<Eigen::Index>(2 * f + 1)));
+            if (std::abs(z) == 0.0) continue;
+            const double phi = std::atan2(e.dot(fr[f].e2), e.dot(fr[f].e1));
+            const auto c = static_cast<std::size_t>(comp[f]);
+            sum[c] += len * std::polar(1.0, N * phi) * std::conj(z) / std::abs(z);
+            weight[c] += len;
+        }
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const auto c = static_cast<std::size_t>(comp[f]);
+        if (!(weight[c] > 0) || std::abs(sum[c]) < weight[c] / 3.0) continue;
+        const std::complex<double> turn = sum[c] / std::abs(sum[c]);
+        const std::complex<double> z(x->coeff(static_cast<Eigen::Index>(2 * f)), x->coeff(static_cast<Eigen::Index>(2 * f + 1)));
+        const std::complex<double> r = turn * z;
+        (*x)[static_cast<Eigen::Index>(2 * f)] = r.real();
+        (*x)[static_cast<Eigen::Index>(2 * f + 1)] = r.imag();
+    }
+}
+
 struct Constraint {
     int face;
     Vec3 vector;  ///< tangent, length = scale
@@ -233,6 +269,7 @@ DirectionField compute_field(const Mesh& m, const std::vector<std::array<int, 3>
                 if (n > 0) x.segment<2>(static_cast<Eigen::Index>(2 * f)) /= n;
             }
         }
+        align_to_edges(m, nb, fr, N, comp, ncomp, &x);
     } else {
         // Smoothest field through the constraints (soft, weight w): (A + w C) x = w C z.
         const double w = 100.0;
