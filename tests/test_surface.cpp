@@ -373,8 +373,8 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     const auto [lo, hi] = region_density(run);
     std::printf("eight chain mail: %d mended, region density %.3f - %.3f; %s\n", run.r.surface.elements_mended, lo, hi, h.c_str());
     RecordProperty("links", h);
-    // Measured at seed 1: 738 rings, 90 mended, 63 loose rings removed; 250 linked with 4, none
-    // with none; region density 0.666-0.823. Before (no turn, no mending): 667 rings, 132 linked
+    // Measured at seed 1: 762 rings, 114 mended, 63 loose rings removed; 253 linked with 4, none
+    // with none; region density 0.689-0.836. Before (no turn, no mending): 667 rings, 132 linked
     // with 4, 83 with none, 0.646-0.796 (all but the last bound fail). Issue 3 asks for 0.85.
     const auto count = static_cast<double>(rl.rings.size());
     EXPECT_GT(run.r.surface.elements_mended, 20);

@@ -61,6 +61,10 @@ constexpr double kFillOnPatch = 0.8;
 /// A lattice slot is empty (mend_rings) when no element's centre lies within this share of the
 /// swatch's ring spacing.
 constexpr double kMendEmpty = 0.6;
+/// A mended ring keeps at least this share of its swatch element's size (square root of area).
+constexpr double kMendMinSize = 0.75;
+/// Mending passes at most (each over the faces near the rings the last one added).
+constexpr int kMendPasses = 6;
 
 /// The faces whose corners are all `ok`, with only the vertices they use (an element partly off a
 /// patch: its other vertices have no place in the frame, and a test reading every vertex, such as
@@ -1225,33 +1229,65 @@ private:
                 if (t != s && is_ring_source(static_cast<int>(t)) && (centre[s] - centre[t]).norm() < 1.5 * spacing)
                     lattice[s].push_back(static_cast<int>(t));
         // Frames tile the surface: each mends the slots within R of its seed and marks the faces
-        // there as done; the next frame starts at the first face not done.
+        // there as done; the next frame starts at the first face not done. A ring mended in one
+        // frame can open slots in a frame already done, so passes repeat over the faces near the
+        // rings the last pass added, until one adds none (at most kMendPasses; on the eight at scale
+        // 0.2 the first pass added 90 rings, the next four 32, 18, 9 and 19).
         const double R = 0.5 * std::hypot(sx_, sy_) * cell_;
         const int shrunk = surface_.patches_shrunk;  // frames are no patches
+        mend_failed_.clear();
+        mend_failed_grid_.clear();
+        mend_cell_ = std::max(spacing * scale_ * *std::max_element(local_scale_.begin(), local_scale_.end()), 1e-12);
         const std::size_t F = base_.mesh.faces.size();
-        std::vector<char> visited(F, 0);
-        std::size_t done = 0;
-        for (std::size_t seed = 0; seed < F; ++seed) {
-            if (visited[seed]) continue;
-            Frame fr;
-            if (!make_frame(static_cast<int>(seed), &fr)) {
-                visited[seed] = 1;
-                continue;
+        std::vector<char> pending(F, 1);  // faces whose frames may find new slots
+        for (int pass = 0; pass < kMendPasses; ++pass) {
+            const std::size_t first_new = elems_.size();
+            std::vector<char> visited(F, 0);
+            std::size_t todo = 0, done = 0;
+            for (std::size_t f = 0; f < F; ++f) {
+                visited[f] = !pending[f];
+                todo += pending[f];
             }
-            const quilt::FlatPatch& flat = fr.flat;
-            for (std::size_t lf = 0; lf < flat.faces.size(); ++lf) {
-                const auto f = static_cast<std::size_t>(flat.faces[lf]);
-                face_slot_[f] = static_cast<int>(lf);
-                Vec2 c = Vec2::Zero();
-                for (int k = 0; k < 3; ++k) c += flat.uv[static_cast<std::size_t>(flat.local[lf][k])] / 3.0;
-                if (c.norm() <= R || f == seed) {
-                    done += !visited[f];
-                    visited[f] = 1;
+            for (std::size_t seed = 0; seed < F; ++seed) {
+                if (visited[seed]) continue;
+                Frame fr;
+                if (!make_frame(static_cast<int>(seed), &fr)) {
+                    visited[seed] = 1;
+                    continue;
                 }
+                const quilt::FlatPatch& flat = fr.flat;
+                for (std::size_t lf = 0; lf < flat.faces.size(); ++lf) {
+                    const auto f = static_cast<std::size_t>(flat.faces[lf]);
+                    face_slot_[f] = static_cast<int>(lf);
+                    Vec2 c = Vec2::Zero();
+                    for (int k = 0; k < 3; ++k) c += flat.uv[static_cast<std::size_t>(flat.local[lf][k])] / 3.0;
+                    if (c.norm() <= R || f == seed) {
+                        done += !visited[f];
+                        visited[f] = 1;
+                    }
+                }
+                mend_frame(flat, fr.local, R, spacing, centre, lattice);
+                for (int f : flat.faces) face_slot_[static_cast<std::size_t>(f)] = -1;
+                opt_.reporter.report("mending", (pass + static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(todo, 1))) / kMendPasses);
             }
-            mend_frame(flat, fr.local, R, spacing, centre, lattice);
-            for (int f : flat.faces) face_slot_[static_cast<std::size_t>(f)] = -1;
-            opt_.reporter.report("mending", static_cast<double>(done) / static_cast<double>(F));
+            if (elems_.size() == first_new) break;
+            // Next pass: the faces within two frame cores of a ring added in this one.
+            pending.assign(F, 0);
+            std::vector<int> queue;
+            for (std::size_t id = first_new; id < elems_.size(); ++id) {
+                const SurfElement& e = elems_[id];
+                if (!e.alive || e.base_faces.empty()) continue;
+                const Vec3 c = area_centroid(e.embedded);
+                const double reach = 2.0 * R * scale_ * local_scale_[static_cast<std::size_t>(e.base_faces.front())];
+                queue.assign(e.base_faces.begin(), e.base_faces.end());
+                for (int f : queue) pending[static_cast<std::size_t>(f)] = 1;
+                for (std::size_t head = 0; head < queue.size(); ++head)
+                    for (int g : base_.nb[static_cast<std::size_t>(queue[head])])
+                        if (g >= 0 && !pending[static_cast<std::size_t>(g)] && (base_.centroid[static_cast<std::size_t>(g)] - c).norm() <= reach) {
+                            pending[static_cast<std::size_t>(g)] = 1;
+                            queue.push_back(g);
+                        }
+            }
         }
         surface_.patches_shrunk = shrunk;
     }
@@ -1280,9 +1316,6 @@ private:
             }
             if (Pose pose; is_ring_source(e.source) && element_pose(e, flat, hs, &pose) && pose.residual <= 0.1 * spacing) poses.push_back(pose);
         }
-        // Slots tried in vain, with the turn of the ring tried there: another standing ring that puts
-        // the same ring there (within a tenth of the spacing and 3 degrees) would fail the same way.
-        std::vector<std::pair<Vec2, double>> failed;
         std::vector<SurfacePoint> anchors;
         Mesh embedded;
         for (std::size_t k = 0; k < poses.size(); ++k) {  // grows: a mended ring mends on
@@ -1295,22 +1328,65 @@ private:
                 // A slot is empty when no element's centre lies within 0.6 of the spacing (at 0.5-0.6,
                 // 3 of 273 tries fitted on the eight: the neighbouring lattice's ring is there).
                 if (std::any_of(filled.begin(), filled.end(), [&](const Vec2& q) { return (q - c).norm() < kMendEmpty * unit; })) continue;
-                if (std::any_of(failed.begin(), failed.end(), [&](const auto& f) {
-                        return (f.first - c).norm() < 0.1 * unit && std::fabs(std::remainder(f.second - angle, 2.0 * M_PI)) < 0.05;
-                    }))
-                    continue;
+                // A slot tried in vain stays so: mending only adds rings. Another standing ring that
+                // puts the same ring there (within a tenth of the spacing and 3 degrees), in this
+                // frame or any later one, is not tried again.
+                Vec3 at, dir;
+                double tolerance = 0.0;
+                if (!slot_on_surface(flat, locator, c, angle, unit, &at, &dir, &tolerance) || mend_failed(at, dir, tolerance)) continue;
                 std::vector<int> around;  // rings the new one may link with
                 for (std::size_t i = 0; i < filled.size(); ++i)
                     if ((filled[i] - c).norm() < 1.6 * unit && is_ring_source(elems_[static_cast<std::size_t>(filled_id[i])].source)) around.push_back(filled_id[i]);
-                if (Pose placed; mend_slot(flat, locator, hs, local, pose, j, c, around, &anchors, &embedded, &placed)) {
+                bool lasting = true;
+                if (Pose placed; mend_slot(flat, locator, hs, local, pose, j, c, around, &anchors, &embedded, &placed, &lasting)) {
                     filled.push_back(c);
                     filled_id.push_back(static_cast<int>(elems_.size()) - 1);
                     poses.push_back(placed);
-                } else {
-                    failed.emplace_back(c, angle);
+                } else if (lasting) {
+                    mend_failed_.push_back({at, dir});
+                    mend_failed_grid_[mend_key(at)].push_back(mend_failed_.size() - 1);
                 }
             }
         }
+    }
+
+    /// A frame slot on the surface: its base point and the 3D direction of the frame's angle
+    /// `angle` there, and a tenth of the ring spacing `unit` (frame units) in base units.
+    bool slot_on_surface(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, const Vec2& c, double angle, double unit,
+                         Vec3* at, Vec3* dir, double* tolerance) const {
+        const auto hit = locator.locate(c, 0.0);
+        if (hit.local_face < 0) return false;
+        const auto lf = static_cast<std::size_t>(hit.local_face);
+        const auto f = static_cast<std::size_t>(flat.faces[lf]);
+        const Tri& t = base_.mesh.faces[f];
+        *at = hit.bary[0] * base_.mesh.vertices[static_cast<std::size_t>(t[0])] + hit.bary[1] * base_.mesh.vertices[static_cast<std::size_t>(t[1])] +
+              hit.bary[2] * base_.mesh.vertices[static_cast<std::size_t>(t[2])];
+        const Vec3 x = frame_x_on(flat, lf);
+        const Vec3 n = (base_.mesh.vertices[static_cast<std::size_t>(t[1])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])])
+                           .cross(base_.mesh.vertices[static_cast<std::size_t>(t[2])] - base_.mesh.vertices[static_cast<std::size_t>(t[0])]);
+        if (x.squaredNorm() == 0.0 || !(n.norm() > 0.0)) return false;
+        *dir = std::cos(angle) * x + std::sin(angle) * n.normalized().cross(x);
+        *tolerance = 0.1 * unit * scale_ * local_scale_[f];
+        return true;
+    }
+
+    std::array<long, 3> mend_key(const Vec3& p) const {
+        const Vec3 q = p / mend_cell_;
+        return {std::lround(std::floor(q.x())), std::lround(std::floor(q.y())), std::lround(std::floor(q.z()))};
+    }
+
+    /// Was a ring tried in vain at `at` with direction `dir` (within `tolerance` and 3 degrees)?
+    bool mend_failed(const Vec3& at, const Vec3& dir, double tolerance) const {
+        const auto k = mend_key(at);
+        for (long dx = -1; dx <= 1; ++dx)
+            for (long dy = -1; dy <= 1; ++dy)
+                for (long dz = -1; dz <= 1; ++dz) {
+                    const auto it = mend_failed_grid_.find({k[0] + dx, k[1] + dy, k[2] + dz});
+                    if (it == mend_failed_grid_.end()) continue;
+                    for (std::size_t i : it->second)
+                        if ((mend_failed_[i].first - at).norm() < tolerance && mend_failed_[i].second.dot(dir) > std::cos(3.0 * M_PI / 180.0)) return true;
+                }
+        return false;
     }
 
     /// Tries swatch ring `j` where `pose` puts it (centre `c` in the frame): as it is, turned by up to
@@ -1319,8 +1395,11 @@ private:
     /// mended on the eight, 15 were smaller). The first pose that lies on the patch, collides with
     /// nothing and does not fold is added.
     bool mend_slot(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, const Pose& pose, int j,
-                   const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed) {
+                   const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed,
+                   bool* lasting) {
+        *lasting = true;  // every pose collided or folded: more rings will not change that
         const Mesh& src = sw_.elements[static_cast<std::size_t>(j)];
+        const double want = std::max(mesh_area(src) * scale_ * scale_ * local * local, 1e-300);
         double fit = 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
         for (const double shrink : {1.0, 0.92, 0.85})
             for (const double turn : {0.0, 0.05, -0.05, 0.1, -0.1}) {
@@ -1332,12 +1411,24 @@ private:
                     v = Vec3(q.x(), q.y(), v.z());
                 }
                 if (fit == 0.0) {
-                    if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) return false;  // off the patch
+                    if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) {
+                        *lasting = false;  // off this patch: another frame may hold it
+                        return false;
+                    }
                 }
                 if (fit * shrink != 1.0) m = resized_in_frame(m, fit * shrink);
-                if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, anchors, embedded)) continue;
+                if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, anchors, embedded)) {
+                    *lasting = false;
+                    continue;
+                }
+                // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its
+                // swatch element's size (the square root of the area; the stage promises 1.5).
+                if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) continue;
                 if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
-                if (interlocked_ && !links_any(*embedded, around)) continue;
+                if (interlocked_ && !links_any(*embedded, around)) {
+                    *lasting = false;  // a ring mended later may give it a link
+                    continue;
+                }
                 add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
                 ++surface_.elements_mended;
                 // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
@@ -1723,6 +1814,9 @@ private:
     int sx_ = 0, sy_ = 0, k_ = 0;
     int symmetry_ = 4;
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
+    std::vector<std::pair<Vec3, Vec3>> mend_failed_;  ///< slots tried in vain (mend_frame): base point, direction
+    std::map<std::array<long, 3>, std::vector<std::size_t>> mend_failed_grid_;
+    double mend_cell_ = 1.0;
     bool rings_ = false;  ///< the swatch has rings (is_ring_source): their lattices are continued and mended
     bool interlocked_ = false;  ///< ... and they interlock (chain mail): no ring may be left unlinked
     double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
