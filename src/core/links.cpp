@@ -84,4 +84,8 @@ double linking_number(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return total / (4.0 * M_PI);
 }
 
+bool links_once(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    return a.size() >= 3 && b.size() >= 3 && std::lround(std::fabs(linking_number(a, b))) == 1;
+}
+
 }  // namespace meshquilt

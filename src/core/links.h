@@ -23,4 +23,8 @@ std::vector<Vec3> ring_centerline(const Mesh& ring, int bins = 48);
 /// orientations of the curves. \throw std::invalid_argument fewer than 3 points in a curve
 double linking_number(const std::vector<Vec3>& closed_a, const std::vector<Vec3>& closed_b);
 
+/// Do two rings interlock once, given their centre lines (|linking number| rounds to 1)? False
+/// when either line has fewer than 3 points (a degenerate ring links nothing).
+bool links_once(const std::vector<Vec3>& line_a, const std::vector<Vec3>& line_b);
+
 }  // namespace meshquilt

@@ -126,6 +126,7 @@ struct SurfElement {
     int collider_id = -1;
     std::vector<int> base_faces;  ///< distinct base faces its vertices lie on
     Mesh embedded;
+    std::vector<Vec3> centerline;  ///< rings (is_ring_source): the embedded ring's centre line (core/links.h)
 };
 
 class SurfaceQuilter {
@@ -538,14 +539,15 @@ private:
 
     /// A standing element's pose in a patch frame: the similarity x -> A x + t (A a rotation times
     /// a scale) that best carries its swatch element's vertices onto its frame copy, in xy (2D
-    /// Procrustes), and the rms distance left. False when the element is not wholly on the patch or
-    /// no longer has its swatch element's vertices (a stitched thread).
+    /// Procrustes), and the rms distance left.
     struct Pose {
         int source = -1;
         Eigen::Matrix2d A = Eigen::Matrix2d::Identity();
         Vec2 t = Vec2::Zero();
         double residual = 0.0;
     };
+    /// The pose of `e` in the frame of `flat`; false when the element is not wholly on the patch or
+    /// no longer has its swatch element's vertices (a stitched thread).
     bool element_pose(const SurfElement& e, const quilt::FlatPatch& flat, double hs, Pose* pose) const {
         if (e.source < 0) return false;
         const Mesh& src = sw_.elements[static_cast<std::size_t>(e.source)];
@@ -1132,11 +1134,7 @@ private:
             return std::array<long, 3>{std::lround(std::floor(c.x())), std::lround(std::floor(c.y())), std::lround(std::floor(c.z()))};
         };
         for (std::size_t i = 0; i < ids.size(); ++i) grid[key(boxes[i])].push_back(i);
-        std::vector<std::vector<Vec3>> lines(ids.size());
-        auto line = [&](std::size_t i) -> const std::vector<Vec3>& {
-            if (lines[i].empty()) lines[i] = ring_centerline(elems_[static_cast<std::size_t>(ids[i])].embedded);
-            return lines[i];
-        };
+        auto line = [&](std::size_t i) -> const std::vector<Vec3>& { return elems_[static_cast<std::size_t>(ids[i])].centerline; };
         for (std::size_t i = 0; i < ids.size(); ++i) {
             const auto k = key(boxes[i]);
             for (long dx = -1; dx <= 1; ++dx)
@@ -1146,8 +1144,7 @@ private:
                         if (it == grid.end()) continue;
                         for (std::size_t j : it->second) {
                             if (j <= i || !boxes[i].overlaps(boxes[j])) continue;
-                            if (line(i).size() < 3 || line(j).size() < 3) continue;
-                            if (std::lround(std::fabs(linking_number(line(i), line(j)))) != 1) continue;
+                            if (!links_once(line(i), line(j))) continue;
                             ++links[ids[i]];
                             ++links[ids[j]];
                         }
@@ -1163,10 +1160,8 @@ private:
         if (line.size() < 3) return false;
         const Box3 box = bounding_box(m);
         for (int id : ids) {
-            const Mesh& other = elems_[static_cast<std::size_t>(id)].embedded;
-            if (!box.overlaps(bounding_box(other))) continue;
-            const std::vector<Vec3> o = ring_centerline(other);
-            if (o.size() >= 3 && std::lround(std::fabs(linking_number(line, o))) == 1) return true;
+            const SurfElement& other = elems_[static_cast<std::size_t>(id)];
+            if (box.overlaps(bounding_box(other.embedded)) && links_once(line, other.centerline)) return true;
         }
         return false;
     }
@@ -1186,8 +1181,8 @@ private:
         std::size_t linked = 0;
         for (std::size_t i = 0; i < rings.size(); ++i)
             for (std::size_t j = 0; j < rings.size(); ++j) {
-                if (j == i || !boxes[i].overlaps(boxes[j]) || lines[i].size() < 3 || lines[j].size() < 3) continue;
-                if (std::lround(std::fabs(linking_number(lines[i], lines[j]))) == 1) {
+                if (j == i || !boxes[i].overlaps(boxes[j])) continue;
+                if (links_once(lines[i], lines[j])) {
                     ++linked;
                     break;
                 }
@@ -1610,6 +1605,7 @@ private:
         e.source = source;
         e.alive = true;
         e.collider_id = collider_.add(embedded);
+        if (is_ring_source(source)) e.centerline = ring_centerline(embedded);
         e.embedded = std::move(embedded);
         for (const SurfacePoint& sp : e.anchors) e.base_faces.push_back(sp.face);
         std::sort(e.base_faces.begin(), e.base_faces.end());

@@ -264,7 +264,7 @@ std::map<int, int> link_counts(const std::vector<Mesh>& rings, double reach) {
     for (std::size_t i = 0; i < rings.size(); ++i)
         for (std::size_t j = i + 1; j < rings.size(); ++j) {
             if ((centres[i] - centres[j]).norm() > reach) continue;
-            if (std::lround(std::abs(linking_number(lines[i], lines[j]))) == 1) {
+            if (links_once(lines[i], lines[j])) {
                 ++count[static_cast<int>(i)];
                 ++count[static_cast<int>(j)];
             }
