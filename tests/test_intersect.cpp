@@ -329,6 +329,29 @@ TEST(CountSelfIntersections, FoldedFaceInAClosedMesh) {
     EXPECT_EQ(count_self_intersections(sh::torus(0.5, 1.0, 32, 16), 3), 3);  // capped
 }
 
+TEST(SelfIntersectingFaces, FlagsExactlyTheFacesOfTheCountedPairs) {
+    EXPECT_EQ(self_intersecting_faces(sh::torus(1.0, 0.25)), std::vector<char>(sh::torus(1.0, 0.25).faces.size(), 0));
+    // The torus with one vertex pushed through the tube: flagged faces are those of the pairs that
+    // count_self_intersections counts, checked pair by pair here.
+    Mesh m = sh::torus(1.0, 0.25, 32, 12);
+    const Vec3 c(1, 0, 0);
+    m.vertices[0] = c - 2.0 * (m.vertices[0] - c);
+    const std::vector<char> flags = self_intersecting_faces(m);
+    ASSERT_EQ(flags.size(), m.faces.size());
+    std::vector<char> expected(m.faces.size(), 0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        for (std::size_t g = f + 1; g < m.faces.size(); ++g) {
+            Mesh pair;
+            pair.vertices = m.vertices;
+            pair.faces = {m.faces[f], m.faces[g]};
+            if (count_self_intersections(pair) > 0) expected[f] = expected[g] = 1;
+        }
+    EXPECT_EQ(flags, expected);
+    EXPECT_GT(std::count(flags.begin(), flags.end(), 1), 2);
+    // Every face that touches vertex 0 crosses something; faces far from it do not.
+    EXPECT_EQ(flags[m.faces.size() / 2], 0);
+}
+
 TEST(CountSelfIntersections, DuplicatedFaceAndTJunction) {
     Mesh m = sh::cuboid(V(0, 0, 0), V(1, 1, 1));
     m.faces.push_back(m.faces[4]);
@@ -427,6 +450,20 @@ void expect_agrees_with_brute_force(const ElementColliderOptions& options, std::
             checked_hits += expected.size();
             EXPECT_EQ(collider.colliding(queries[q].mesh), expected) << "query " << q << " round " << round;
             EXPECT_EQ(collider.collides(queries[q].mesh), !expected.empty());
+            // Per face: flagged exactly when it touches a face of a stored element.
+            std::vector<char> faces(queries[q].mesh.faces.size(), 0);
+            for (int k : expected)
+                for (std::size_t f = 0; f < faces.size(); ++f) {
+                    const Tri& a = queries[q].mesh.faces[f];
+                    const Mesh& pm = placed[static_cast<std::size_t>(k)].mesh;
+                    for (const Tri& b : pm.faces)
+                        if (triangles_intersect({queries[q].mesh.vertices[a[0]], queries[q].mesh.vertices[a[1]], queries[q].mesh.vertices[a[2]]},
+                                                {pm.vertices[b[0]], pm.vertices[b[1]], pm.vertices[b[2]]})) {
+                            faces[f] = 1;
+                            break;
+                        }
+                }
+            EXPECT_EQ(collider.colliding_faces(queries[q].mesh), faces) << "query " << q << " round " << round;
             if (!expected.empty()) {  // ignoring a hit drops exactly that one
                 std::vector<int> rest(expected.begin() + 1, expected.end());
                 EXPECT_EQ(collider.colliding(queries[q].mesh, {expected.front(), 9999}), rest);

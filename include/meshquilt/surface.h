@@ -85,6 +85,9 @@ struct SurfaceQualityReport {
     int patches_shrunk = 0;        ///< patches made smaller because LSCM distorted area by more than 4
     int frozen_elements_seen = 0;  ///< old elements reaching beyond a patch, treated as obstacles
     int threads_extended = 0;      ///< old threads reaching beyond a patch, handed to the kernel with their far part carried along
+    int threads_trimmed = 0;       ///< new threads that collided, cut where they did; their free parts went in
+    int thread_pieces = 0;         ///< pieces of trimmed threads that went in
+    int threads_cut_at_patch = 0;  ///< new threads reaching off their patch whose parts on it were placed (pieces)
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
     int elements_mended = 0;       ///< rings put into empty lattice slots after the last patch (seams of ring lattices)

@@ -723,26 +723,51 @@ std::vector<std::pair<int, int>> intersecting_element_pairs(const Mesh& mesh, co
     return result;
 }
 
+namespace {
+/// An element's faces for self-intersection tests: primitives whose corners are canonical vertex
+/// ids (coincident vertices share one), and their box tree.
+struct SelfTest {
+    std::vector<Prim> prims;
+    BoxTree tree;
+    explicit SelfTest(const Mesh& element) {
+        std::vector<Box> boxes;
+        make_prims(element, prims, boxes);
+        const std::vector<int> canon = canonical_vertex_ids(element);
+        for (std::size_t f = 0; f < prims.size(); ++f)
+            for (int k = 0; k < 3; ++k) prims[f].v[static_cast<std::size_t>(k)] = canon[static_cast<std::size_t>(element.faces[f][k])];
+        tree.build(boxes, iota_ids(boxes.size()));
+    }
+    /// Do faces i and j intersect other than properly at what they share?
+    [[nodiscard]] bool bad(int i, int j) const {
+        const Prim& f = prims[static_cast<std::size_t>(i)];
+        const Prim& g = prims[static_cast<std::size_t>(j)];
+        return shares_vertex(f, g) ? adjacent_faces_overlap(f, g) : prims_intersect(f, g);
+    }
+};
+}  // namespace
+
 int count_self_intersections(const Mesh& element, std::size_t max) {
     check_mesh(element, "count_self_intersections");
     if (element.faces.size() < 2 || max == 0) return 0;
     const std::size_t cap = std::min<std::size_t>(max, static_cast<std::size_t>(std::numeric_limits<int>::max()));
-    std::vector<Prim> prims;
-    std::vector<Box> boxes;
-    make_prims(element, prims, boxes);
-    const std::vector<int> canon = canonical_vertex_ids(element);
-    for (std::size_t f = 0; f < prims.size(); ++f)
-        for (int k = 0; k < 3; ++k) prims[f].v[static_cast<std::size_t>(k)] = canon[static_cast<std::size_t>(element.faces[f][k])];
-    BoxTree tree;
-    tree.build(boxes, iota_ids(boxes.size()));
+    const SelfTest self(element);
     std::atomic<std::size_t> count{0};
-    traverse(tree, tree, true, [&](int i, int j) {
-        const Prim& f = prims[static_cast<std::size_t>(i)];
-        const Prim& g = prims[static_cast<std::size_t>(j)];
-        const bool bad = shares_vertex(f, g) ? adjacent_faces_overlap(f, g) : prims_intersect(f, g);
-        return bad && count.fetch_add(1) + 1 >= cap;
-    });
+    traverse(self.tree, self.tree, true, [&](int i, int j) { return self.bad(i, j) && count.fetch_add(1) + 1 >= cap; });
     return static_cast<int>(std::min(count.load(), cap));
+}
+
+std::vector<char> self_intersecting_faces(const Mesh& element) {
+    check_mesh(element, "self_intersecting_faces");
+    std::vector<char> hit(element.faces.size(), 0);
+    if (element.faces.size() < 2) return hit;
+    const SelfTest self(element);
+    std::vector<NodePair> stack;
+    auto mark = [&](int i, int j) {
+        if (self.bad(i, j)) hit[static_cast<std::size_t>(i)] = hit[static_cast<std::size_t>(j)] = 1;
+        return false;
+    };
+    traverse_from(self.tree, self.tree, true, {0, 0}, mark, stack);
+    return hit;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -848,10 +873,16 @@ struct ElementCollider::Impl {
         return out;
     }
 
-    template <class Fn>  // fn(id) -> bool stop
-    void for_each_colliding(const Mesh& candidate, const std::vector<int>& ignore, Fn&& fn) const {
+    /// The candidate's faces that reach into a nearby element's box, prepared (`faces`: their
+    /// indices in `candidate`), and the ids of those elements. Empty when nothing is near.
+    struct Query {
+        Prepared c;
+        std::vector<int> faces, ids;
+    };
+    Query prepare_query(const Mesh& candidate, const std::vector<int>& ignore) const {
+        Query q;
         check_mesh(candidate, "ElementCollider candidate");
-        if (candidate.faces.empty() || alive == 0) return;
+        if (candidate.faces.empty() || alive == 0) return q;
         std::vector<Box> face_boxes(candidate.faces.size());
         Box all;
         for (std::size_t f = 0; f < candidate.faces.size(); ++f) {
@@ -867,29 +898,38 @@ struct ElementCollider::Impl {
         }
         std::vector<int> ign(ignore);
         std::sort(ign.begin(), ign.end());
-        const std::vector<int> ids = near(all, ign);
-        if (ids.empty()) return;
+        q.ids = near(all, ign);
+        if (q.ids.empty()) return q;
 
         // Only faces that reach into some nearby element's box can touch it.
         std::vector<Box> near_boxes;
-        near_boxes.reserve(ids.size());
-        for (int id : ids) near_boxes.push_back(entries[static_cast<std::size_t>(id)]->geometry.box);
-        Prepared c;
+        near_boxes.reserve(q.ids.size());
+        for (int id : q.ids) near_boxes.push_back(entries[static_cast<std::size_t>(id)]->geometry.box);
         std::vector<Box> kept_boxes;
         for (std::size_t f = 0; f < candidate.faces.size(); ++f) {
             const Box& b = face_boxes[f];
             if (std::none_of(near_boxes.begin(), near_boxes.end(), [&](const Box& n) { return overlap(b, n); })) continue;
             const Tri& t = candidate.faces[f];
-            c.prims.push_back(make_prim(candidate.vertices[static_cast<std::size_t>(t[0])],
-                                        candidate.vertices[static_cast<std::size_t>(t[1])],
-                                        candidate.vertices[static_cast<std::size_t>(t[2])]));
+            q.c.prims.push_back(make_prim(candidate.vertices[static_cast<std::size_t>(t[0])],
+                                          candidate.vertices[static_cast<std::size_t>(t[1])],
+                                          candidate.vertices[static_cast<std::size_t>(t[2])]));
+            q.faces.push_back(static_cast<int>(f));
             kept_boxes.push_back(b);
         }
-        if (c.prims.empty()) return;
-        c.tree.build(kept_boxes, iota_ids(kept_boxes.size()));
-        c.box = c.tree.root_box();
-        for (int id : ids)
-            if (prepared_intersect(c, entries[static_cast<std::size_t>(id)]->geometry) && fn(id)) return;
+        if (q.c.prims.empty()) {
+            q.ids.clear();
+            return q;
+        }
+        q.c.tree.build(kept_boxes, iota_ids(kept_boxes.size()));
+        q.c.box = q.c.tree.root_box();
+        return q;
+    }
+
+    template <class Fn>  // fn(id) -> bool stop
+    void for_each_colliding(const Mesh& candidate, const std::vector<int>& ignore, Fn&& fn) const {
+        const Query q = prepare_query(candidate, ignore);
+        for (int id : q.ids)
+            if (prepared_intersect(q.c, entries[static_cast<std::size_t>(id)]->geometry) && fn(id)) return;
     }
 };
 
@@ -959,6 +999,23 @@ bool ElementCollider::collides(const Mesh& candidate, const std::vector<int>& ig
     bool any = false;
     impl_->for_each_colliding(candidate, ignore, [&](int) { return any = true; });
     return any;
+}
+
+std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const std::vector<int>& ignore) const {
+    std::vector<char> hit(candidate.faces.size(), 0);
+    const Impl::Query q = impl_->prepare_query(candidate, ignore);
+    std::vector<NodePair> stack;
+    for (int id : q.ids) {
+        const Prepared& e = impl_->entries[static_cast<std::size_t>(id)]->geometry;
+        if (e.tree.empty() || !overlap(q.c.box, e.box)) continue;
+        auto mark = [&](int i, int j) {
+            if (prims_intersect(q.c.prims[static_cast<std::size_t>(i)], e.prims[static_cast<std::size_t>(j)]))
+                hit[static_cast<std::size_t>(q.faces[static_cast<std::size_t>(i)])] = 1;
+            return false;
+        };
+        traverse_from(q.c.tree, e.tree, false, {0, 0}, mark, stack);
+    }
+    return hit;
 }
 
 std::size_t ElementCollider::size() const { return impl_->alive; }

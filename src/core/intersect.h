@@ -69,6 +69,10 @@ std::vector<std::pair<int, int>> intersecting_element_pairs(const Mesh& mesh,
 /// - all three corners shared (a duplicated face): counted.
 int count_self_intersections(const Mesh& element, std::size_t max = SIZE_MAX);
 
+/// Per face of `element`: 1 when it takes part in a self-intersection as count_self_intersections
+/// counts them (both faces of each pair are flagged).
+std::vector<char> self_intersecting_faces(const Mesh& element);
+
 /// Options for ElementCollider.
 struct ElementColliderOptions {
     /// Edge length of the uniform grid that buckets element bounding boxes. <= 0: the largest
@@ -118,6 +122,11 @@ public:
     /// Like `colliding`, but stops at the first hit: true if `candidate` collides with any element
     /// not in `ignore`.
     [[nodiscard]] bool collides(const Mesh& candidate, const std::vector<int>& ignore = {}) const;
+
+    /// Per face of `candidate`: 1 when it intersects or touches a stored element not in `ignore`.
+    /// Every pair is tested (no early stop), serially, so it costs more than `collides`.
+    /// \throw InvalidInput bad indices or non-finite coordinates in `candidate`
+    [[nodiscard]] std::vector<char> colliding_faces(const Mesh& candidate, const std::vector<int>& ignore = {}) const;
 
     /// Number of stored (added and not removed) elements.
     [[nodiscard]] std::size_t size() const;

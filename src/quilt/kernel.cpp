@@ -793,7 +793,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
     for (std::size_t o = 0; o < old.size(); ++o)
         if (partner_of_old[o] >= 0) matched.push_back(o);
     plan.correspondences = static_cast<int>(matched.size());
-    std::vector<PatchPlan::Change> merged_changes(matched.size()), squeezed(matched.size());
+    std::vector<PatchPlan::Change> merged_changes(matched.size()), squeezed(matched.size()), remnants(matched.size());
     std::vector<std::string> failures(matched.size());
     tbb::parallel_for(std::size_t(0), matched.size(), [&](std::size_t k) {
         const std::size_t o = matched[k];
@@ -844,7 +844,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
                             : fresh[static_cast<std::size_t>(e)].source;
             ch.mesh = std::move(merged);
             if (outcome == StitchOutcome::Stitched && own.new_part > own.old_part) ch.fallback = in_d;
-        } else if (own.new_part > own.old_part) {
+        } else if (own.new_part > own.old_part && !(params.thread_remnants && is_elongated(mo) && is_elongated(mi))) {
             failures[k] = why.empty() ? "unknown" : why;
             ch.kind = PatchPlan::Change::Replaced;
             ch.source = fresh[static_cast<std::size_t>(e)].source;
@@ -894,6 +894,11 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
                 squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
                 squeezed[k].mesh = std::move(loser);
             }
+        }
+        if (params.thread_remnants && new_lost && is_elongated(mo) && is_elongated(mi)) {
+            remnants[k].kind = PatchPlan::Change::Added;
+            remnants[k].source = fresh[static_cast<std::size_t>(e)].source;
+            remnants[k].mesh = in_d;
         }
         merged_changes[k] = std::move(ch);
     });
@@ -966,6 +971,8 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         plan.changes.push_back(std::move(ch));
     }
     for (PatchPlan::Change& ch : squeezed_additions) plan.changes.push_back(std::move(ch));
+    for (PatchPlan::Change& ch : remnants)
+        if (!ch.mesh.faces.empty()) plan.changes.push_back(std::move(ch));
     return plan;
 }
 

@@ -25,6 +25,10 @@ struct KernelParams {
     /// Beyond the paper: clearance a blob (closed genus-0 compact element) keeps when it is squeezed
     /// clear of the partner that won the merge (see plan_patch). 0: losers are dropped, as in the paper.
     double blob_gap = 0.0;
+    /// Beyond the paper: when of two threads that could not be stitched the new one loses, it is
+    /// still handed back as an addition (a remnant: it overlaps the winner), for a caller that cuts
+    /// threads where they collide (the surface stage, quilt/trim.h). Off: the loser is dropped.
+    bool thread_remnants = false;
 };
 
 /// An element already in the output, in the kernel's frame. `id` is the caller's handle.

@@ -16,6 +16,7 @@
 #include "quilt/match.h"
 #include "quilt/patch.h"
 #include "quilt/swatch.h"
+#include "quilt/trim.h"
 #include "shellmap/visibility.h"
 
 #include <algorithm>
@@ -65,6 +66,12 @@ constexpr double kMendEmpty = 0.6;
 constexpr double kMendMinSize = 0.75;
 /// Mending passes at most (each over the faces near the rings the last one added).
 constexpr int kMendPasses = 6;
+// A new thread that collides is cut kTrimMargin of its width clear of what it meets; pieces
+// shorter than kTrimMinLength widths are dropped (a thread is more than 3 times longer than wide).
+constexpr double kTrimMargin = 0.5;
+constexpr double kTrimMinLength = 3.5;
+// A new thread reaching off its patch is cut kTrimEdgeMargin of its width inside the patch.
+constexpr double kTrimEdgeMargin = 0.25;
 
 /// The faces whose corners are all `ok`, with only the vertices they use (an element partly off a
 /// patch: its other vertices have no place in the frame, and a test reading every vertex, such as
@@ -158,6 +165,7 @@ public:
         params_.metric.lambda = opt_.lambda;
         params_.metric.unit = sw_.mean_edge;
         params_.mu = opt_.mu;
+        params_.thread_remnants = true;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare swatch"] += seconds_since(t0);
         t0 = Clock::now();
@@ -706,13 +714,31 @@ private:
         std::vector<quilt::NewElement> fresh;
         for (quilt::NewElement& ne : pl.fresh) {
             const Mesh& m = ne.mesh;
+            std::vector<char> off(m.vertices.size(), 0);
             bool inside = true;
-            for (const Vec3& v : m.vertices)
-                if (!locator.locate(v.head<2>(), 0.0).inside) {
+            for (std::size_t v = 0; v < m.vertices.size(); ++v)
+                if (!locator.locate(m.vertices[v].head<2>(), 0.0).inside) {
+                    off[v] = 1;
                     inside = false;
-                    break;
+                    if (!quilt::is_elongated(m)) break;
                 }
-            if (inside) fresh.push_back(std::move(ne));
+            if (inside) {
+                fresh.push_back(std::move(ne));
+                continue;
+            }
+            if (!quilt::is_elongated(m)) continue;
+            // Beyond the paper: a thread reaching off the patch keeps its parts on it (quilt/trim.h).
+            std::vector<char> bad(m.faces.size(), 0);
+            for (std::size_t f = 0; f < m.faces.size(); ++f)
+                for (int k = 0; k < 3; ++k) bad[f] = static_cast<char>(bad[f] | off[static_cast<std::size_t>(m.faces[f][k])]);
+            const Vec3 size = bounding_box(m).size();
+            const double width = std::min(size.x(), size.y());
+            for (Mesh& piece : quilt::thread_pieces(m, bad, {kTrimEdgeMargin * width, kTrimMinLength * width})) {
+                if (std::all_of(piece.vertices.begin(), piece.vertices.end(), [&](const Vec3& v) { return locator.locate(v.head<2>(), 0.0).inside; })) {
+                    fresh.push_back({ne.source, std::move(piece)});
+                    ++surface_.threads_cut_at_patch;
+                }
+            }
         }
         quilt::Overlap overlap;
         overlap.old_side = [fx0, fy0, fx1, fy1](double x, double y) { return x >= fx0 && x < fx1 && y >= fy0 && y < fy1; };
@@ -1444,6 +1470,8 @@ private:
             std::vector<SurfacePoint> anchors, fallback_anchors;
             Mesh embedded, fallback;
             double resize = 1.0;  ///< the element's scale in the frame for its size on the surface (embed_sized)
+            double fallback_resize = 1.0;
+            std::vector<char> folded;  ///< a new thread's faces that the embedding folds (none: it does not fold)
         };
         // A new element goes onto the surface at its swatch element's size: where the patch's map
         // scales area (LSCM is conformal, not area preserving; normal displacement fans out over
@@ -1472,10 +1500,18 @@ private:
             const bool fresh = ch.kind == Kind::Added || ch.kind == Kind::Replaced;
             const auto r = reach_.find(ch.old_id);
             reach = ch.old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
-            const bool placed = place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded, &c.resize);
+            // A new thread that the embedding folds is not dropped whole: it is cut clear of the
+            // fold (below), as where it collides.
+            const bool thread = ch.kind == Kind::Added && quilt::is_elongated(ch.mesh);
+            const bool placed = thread ? place_sized(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded, &c.resize)
+                                       : place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded, &c.resize);
             reach = nullptr;
             if (!placed) continue;
-            if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback)) c.fallback = Mesh();
+            if (thread && count_self_intersections(c.embedded, 1) > 0) {
+                ++surface_.elements_folded;
+                c.folded = self_intersecting_faces(c.embedded);
+            }
+            if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback, &c.fallback_resize)) c.fallback = Mesh();
             pending.push_back(std::move(c));
         }
         // Beyond the paper: an added blob keeps the swatch's clearance from the old elements around it,
@@ -1491,6 +1527,10 @@ private:
             const std::size_t before = pending.size();
             for (auto& c : pending) {
                 const auto* ch = c.change;
+                if (!c.folded.empty()) {
+                    refused.push_back(std::move(c));
+                    continue;
+                }
                 if (ch->kind == Kind::Added && !keeps_clearance(resized_in_frame(ch->mesh, c.resize), ch->source, around, nullptr, c.resize)) {
                     refused.push_back(std::move(c));
                     continue;
@@ -1502,7 +1542,10 @@ private:
                 std::vector<SurfacePoint>* anchors = &c.anchors;
                 Mesh* embedded = &c.embedded;
                 if (collider_.collides(c.embedded, ignore)) {
-                    if (c.fallback.faces.empty() || collider_.collides(c.fallback, ignore)) {
+                    // A thread's whole partner would replace the old thread, parts beyond the patch
+                    // included: it is cut clear of the old one instead (below).
+                    const bool thread_partner = kind == Kind::Stitched && quilt::is_elongated(ch->fallback);
+                    if (c.fallback.faces.empty() || thread_partner || collider_.collides(c.fallback, ignore)) {
                         refused.push_back(std::move(c));
                         continue;
                     }
@@ -1527,6 +1570,25 @@ private:
             }
             pending = std::move(refused);
         }
+        // Beyond the paper: a new thread without partner that collides keeps its parts clear of
+        // what it meets, capped flat (quilt/trim.h), instead of leaving a bald strip a swatch long.
+        std::deque<Mesh> pieces_applied;
+        {
+            std::vector<Candidate> kept;
+            for (auto& c : pending) {
+                if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh) &&
+                    trim_thread(c.change->mesh, c.change->source, c.embedded, c.resize, place, &pieces_applied, c.folded))
+                    continue;
+                // A stitch of two threads that collides, and whose new partner whole collides too:
+                // the old thread stays, the partner's parts clear of it and of the rest go in.
+                if (c.change->kind == Kind::Stitched && !c.fallback.faces.empty() && quilt::is_elongated(c.change->fallback) &&
+                    trim_thread(c.change->fallback, c.change->source, c.fallback, c.fallback_resize, place, &pieces_applied))
+                    continue;
+                kept.push_back(std::move(c));
+            }
+            pending = std::move(kept);
+        }
+        for (const Mesh& m : pieces_applied) applied.push_back(&m);
         // Beyond the paper: a new element without partner that collides (on a doubly curved base
         // the lattices of neighbouring patches meet at small angles, and interlocked rings then
         // touch) tries small moves in the frame: 8 directions at half and one mean edge length,
@@ -1546,6 +1608,38 @@ private:
             if (c.change->kind == Kind::Stitched) ++report_.stitch_failures;
             else if (c.change->kind != Kind::Deformed) ++report_.collisions_avoided;
         }
+    }
+
+    /// Adds the pieces of new thread `mesh` (frame mesh of swatch element `source`, embedded as
+    /// `embedded`, resized by `resize` in the frame)
+    /// that stay clear of the output: cut where its faces collide, widened by half the thread's width,
+    /// pieces at least 3.5 widths long (so they stay threads for later patches). Each piece is
+    /// embedded again and must not collide or fold. Adds the pieces' frame meshes to `frames`;
+    /// true when any went in.
+    template <class Place>
+    bool trim_thread(const Mesh& mesh, int source, const Mesh& embedded, double resize, const Place& place, std::deque<Mesh>* frames,
+                     const std::vector<char>& folded = {}) {
+        std::vector<char> bad = collider_.colliding_faces(embedded);
+        for (std::size_t f = 0; f < folded.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | folded[f]);
+        if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return false;
+        const Mesh frame = resized_in_frame(mesh, resize);
+        const Vec3 size = bounding_box(frame).size();
+        const double width = std::min(size.x(), size.y());
+        quilt::ThreadCut cut;
+        cut.margin = kTrimMargin * width;
+        cut.min_length = kTrimMinLength * width;
+        bool any = false;
+        for (Mesh& piece : quilt::thread_pieces(frame, bad, cut)) {
+            std::vector<SurfacePoint> anchors;
+            Mesh placed;
+            if (!place(piece, source, false, &anchors, &placed, nullptr) || collider_.collides(placed)) continue;
+            add_element(std::move(anchors), piece.faces, std::move(placed), source);
+            frames->push_back(std::move(piece));
+            ++surface_.thread_pieces;
+            any = true;
+        }
+        if (any) ++surface_.threads_trimmed;
+        return any;
     }
 
     /// Does frame mesh `m` of swatch element `source` keep the swatch's clearance (near_gap, vertex

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: AGPL-3.0-or-later
+#include "quilt/trim.h"
+
+#include "core/intersect.h"
+#include "quilt/kernel.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/clip.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshquilt::quilt {
+
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SM = CGAL::Surface_mesh<K::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+/// Moves a cut at `c` to the middle of the gap between the vertex coordinates `ts` (sorted)
+/// around it, so that no vertex lies on or next to the cutting plane.
+double mid_gap(const std::vector<double>& ts, double c) {
+    const auto it = std::lower_bound(ts.begin(), ts.end(), c);
+    if (it == ts.begin() || it == ts.end()) return c;
+    return 0.5 * (*(it - 1) + *it);
+}
+
+/// `m` clipped to lo <= coordinate `axis` <= hi (either bound may be infinite), closed; false when
+/// CGAL fails or the result is not one closed, oriented piece without self-intersections.
+bool clip_span(const Mesh& m, int axis, double lo, double hi, Mesh* out) {
+    SM sm;
+    for (const Vec3& v : m.vertices) sm.add_vertex(K::Point_3(v.x(), v.y(), v.z()));
+    for (const Tri& t : m.faces)
+        if (sm.add_face(SM::Vertex_index(static_cast<SM::size_type>(t[0])), SM::Vertex_index(static_cast<SM::size_type>(t[1])),
+                        SM::Vertex_index(static_cast<SM::size_type>(t[2]))) == SM::null_face())
+            return false;
+    const Box3 box = bounding_box(m);
+    const Vec3 pad = Vec3::Constant(1.0 + box.size().maxCoeff());
+    Vec3 a = box.min - pad, b = box.max + pad;
+    if (std::isfinite(lo)) a[axis] = lo;
+    if (std::isfinite(hi)) b[axis] = hi;
+    try {
+        if (!PMP::clip(sm, K::Iso_cuboid_3(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z())),
+                       CGAL::parameters::clip_volume(true)))
+            return false;
+    } catch (const std::exception&) {
+        return false;
+    }
+    Mesh r;
+    std::vector<int> index(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
+    for (const auto v : sm.vertices()) {
+        index[v.idx()] = static_cast<int>(r.vertices.size());
+        const auto& p = sm.point(v);
+        r.vertices.emplace_back(p.x(), p.y(), p.z());
+    }
+    for (const auto f : sm.faces()) {
+        Tri t{};
+        int k = 0;
+        for (const auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+            if (k == 3) return false;
+            t[k++] = index[v.idx()];
+        }
+        if (k != 3) return false;
+        r.faces.push_back(t);
+    }
+    if (r.faces.empty() || !is_closed_oriented(r) || count_self_intersections(r, 1) > 0) return false;
+    *out = std::move(r);
+    return true;
+}
+}  // namespace
+
+std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut) {
+    if (m.faces.empty() || bad.size() != m.faces.size()) return {};
+    if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return {m};
+    const Box3 box = bounding_box(m);
+    const int axis = box.size().x() >= box.size().y() ? 0 : 1;
+    // Spans blocked by flagged faces, merged.
+    std::vector<std::pair<double, double>> blocked;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        if (!bad[f]) continue;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (int k = 0; k < 3; ++k) {
+            const double t = m.vertices[static_cast<std::size_t>(m.faces[f][k])][axis];
+            lo = std::min(lo, t);
+            hi = std::max(hi, t);
+        }
+        blocked.emplace_back(lo - cut.margin, hi + cut.margin);
+    }
+    std::sort(blocked.begin(), blocked.end());
+    std::vector<double> ts;
+    ts.reserve(m.vertices.size());
+    for (const Vec3& v : m.vertices) ts.push_back(v[axis]);
+    std::sort(ts.begin(), ts.end());
+    const double t0 = box.min[axis], t1 = box.max[axis];
+    std::vector<std::pair<double, double>> free;
+    double from = t0;
+    for (const auto& [lo, hi] : blocked) {
+        if (lo > from) free.emplace_back(from, lo);
+        from = std::max(from, hi);
+    }
+    if (from < t1) free.emplace_back(from, t1);
+    std::vector<Mesh> pieces;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const auto& [lo, hi] : free) {
+        if (hi - lo < cut.min_length) continue;
+        const double a = lo > t0 ? mid_gap(ts, lo) : -inf;
+        const double b = hi < t1 ? mid_gap(ts, hi) : inf;
+        Mesh piece;
+        if (clip_span(m, axis, a, b, &piece)) pieces.push_back(std::move(piece));
+    }
+    return pieces;
+}
+
+}  // namespace meshquilt::quilt

@@ -1,0 +1,130 @@
+// labels: unit
+// SPDX-License-Identifier: AGPL-3.0-or-later
+// Cutting threads where they collide (quilt/trim.h: thread_pieces): pieces are closed, oriented,
+// free of self-intersections, keep clear of the flagged faces by the margin, and drop what is too
+// short.
+
+#include "core/intersect.h"
+#include "quilt/kernel.h"
+#include "quilt/trim.h"
+#include "support/shapes_isect.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace mq = meshquilt;
+namespace quilt = meshquilt::quilt;
+using mq::Mesh;
+using mq::Tri;
+using mq::Vec3;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A closed thread along x (or y with `along_y`): an elliptic tube (half-widths 0.4 across, 0.15 in
+/// height) from 0 to `length`, `rings` cross-sections of 8 vertices, a little wavy so no two
+/// cross-sections share an x, capped at both ends by a fan around a centre vertex.
+Mesh thread(double length, int rings, bool along_y = false) {
+    Mesh m;
+    const int n = 8;
+    for (int r = 0; r < rings; ++r) {
+        const double x = length * r / (rings - 1);
+        for (int k = 0; k < n; ++k) {
+            const double a = 2 * kPi * k / n;
+            const double y = 0.4 * std::cos(a) + 0.05 * std::sin(x), z = 0.2 + 0.15 * std::sin(a);
+            m.vertices.push_back(along_y ? Vec3(y, x, z) : Vec3(x, y, z));
+        }
+    }
+    const int c0 = static_cast<int>(m.vertices.size());
+    m.vertices.push_back(along_y ? Vec3(0.0, 0.0, 0.2) : Vec3(0.0, 0.0, 0.2));
+    m.vertices.push_back(along_y ? Vec3(0.05 * std::sin(length), length, 0.2) : Vec3(length, 0.05 * std::sin(length), 0.2));
+    for (int r = 0; r + 1 < rings; ++r)
+        for (int k = 0; k < n; ++k) {
+            const int a = r * n + k, b = r * n + (k + 1) % n, c = a + n, d = b + n;
+            m.faces.emplace_back(a, b, d);
+            m.faces.emplace_back(a, d, c);
+        }
+    for (int k = 0; k < n; ++k) {
+        m.faces.emplace_back(c0, (k + 1) % n, k);
+        m.faces.emplace_back(c0 + 1, (rings - 1) * n + k, (rings - 1) * n + (k + 1) % n);
+    }
+    if (along_y)
+        for (Tri& t : m.faces) std::swap(t[1], t[2]);  // the swap of x and y mirrored it
+    return m;
+}
+
+double volume(const Mesh& m) {
+    double v = 0.0;
+    for (const Tri& t : m.faces) v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    return v;
+}
+
+void expect_whole(const Mesh& piece) {
+    EXPECT_TRUE(quilt::is_closed_oriented(piece));
+    EXPECT_EQ(mq::count_self_intersections(piece), 0);
+    EXPECT_GT(volume(piece), 0.0);
+}
+
+TEST(ThreadPieces, WithoutFlagsTheThreadStaysWhole) {
+    const Mesh m = thread(10.0, 41);
+    ASSERT_TRUE(quilt::is_closed_oriented(m));
+    ASSERT_GT(volume(m), 0.0);
+    const auto pieces = quilt::thread_pieces(m, std::vector<char>(m.faces.size(), 0), {0.3, 2.0});
+    ASSERT_EQ(pieces.size(), 1U);
+    EXPECT_EQ(pieces[0].vertices, m.vertices);
+    EXPECT_TRUE(quilt::thread_pieces(m, {}, {0.3, 2.0}).empty());  // flags of the wrong size
+}
+
+// A crossing bar collides with the middle of the thread: the two ends come out closed, clear of the
+// bar, and together hold the thread's volume but the blocked span.
+TEST(ThreadPieces, CutsAroundACrossingBarAndCapsBothPieces) {
+    for (const bool along_y : {false, true}) {
+        SCOPED_TRACE(along_y ? "along y" : "along x");
+        const Mesh m = thread(10.0, 41, along_y);
+        const Mesh bar = along_y ? mq::test::isect::cuboid(Vec3(-2, 4.9, 0.1), Vec3(2, 5.3, 0.3))
+                                 : mq::test::isect::cuboid(Vec3(4.9, -2, 0.1), Vec3(5.3, 2, 0.3));
+        mq::ElementCollider collider;
+        collider.add(bar);
+        const std::vector<char> bad = collider.colliding_faces(m);
+        ASSERT_GT(std::count(bad.begin(), bad.end(), 1), 0);
+        const double margin = 0.3;
+        const auto pieces = quilt::thread_pieces(m, bad, {margin, 2.0});
+        ASSERT_EQ(pieces.size(), 2U);
+        const int axis = along_y ? 1 : 0;
+        double kept = 0.0;
+        for (const Mesh& p : pieces) {
+            expect_whole(p);
+            EXPECT_FALSE(collider.collides(p));
+            kept += volume(p);
+            const mq::Box3 b = mq::bounding_box(p);
+            // Each piece ends the margin before the blocked span, give or take the half spacing of
+            // cross-sections (0.25) by which the cut moves to lie midway between vertices.
+            if (b.min[axis] < 1.0) EXPECT_NEAR(b.max[axis], 4.75 - margin, 0.13);
+            else EXPECT_NEAR(b.min[axis], 5.5 + margin, 0.13);
+        }
+        // The tube's cross-section is about pi * 0.4 * 0.15 (an inscribed 8-gon: 0.9 of it).
+        const double section = volume(m) / 10.0;
+        EXPECT_NEAR(kept, volume(m) - section * (5.5 - 4.75 + 2 * margin), 0.15 * section);
+    }
+}
+
+TEST(ThreadPieces, DropsPiecesShorterThanTheMinimum) {
+    const Mesh m = thread(10.0, 41);
+    std::vector<char> bad(m.faces.size(), 0);
+    // Flag the faces between cross-sections 6 and 7 (x = 1.5 to 1.75): the piece before is 1.5 long.
+    for (int k = 0; k < 16; ++k) bad[static_cast<std::size_t>(6 * 16 + k)] = 1;
+    auto pieces = quilt::thread_pieces(m, bad, {0.2, 2.0});
+    ASSERT_EQ(pieces.size(), 1U);
+    EXPECT_GT(mq::bounding_box(pieces[0]).min.x(), 1.75);
+    expect_whole(pieces[0]);
+    pieces = quilt::thread_pieces(m, bad, {0.2, 1.0});
+    EXPECT_EQ(pieces.size(), 2U);
+    // Everything flagged: nothing left.
+    EXPECT_TRUE(quilt::thread_pieces(m, std::vector<char>(m.faces.size(), 1), {0.2, 1.0}).empty());
+}
+
+}  // namespace
