@@ -127,4 +127,61 @@ TEST(ThreadPieces, DropsPiecesShorterThanTheMinimum) {
     EXPECT_TRUE(quilt::thread_pieces(m, std::vector<char>(m.faces.size(), 1), {0.2, 1.0}).empty());
 }
 
+/// A hairpin: a closed tube (radius 0.3 across, 0.15 in height) along x from 0 to 8 at y = 0,
+/// round a half circle of radius 1, and back along y = 2; capped by fans.
+Mesh hairpin() {
+    std::vector<Vec3> centre, across;
+    for (int i = 0; i <= 32; ++i) centre.emplace_back(0.25 * i, 0.0, 0.3), across.emplace_back(0, 1, 0);
+    for (int i = 1; i < 16; ++i) {
+        const double a = -kPi / 2 + kPi * i / 16;
+        centre.emplace_back(8.0 + std::cos(a), 1.0 + std::sin(a), 0.3);
+        across.emplace_back(-std::cos(a), -std::sin(a), 0);
+    }
+    for (int i = 0; i <= 32; ++i) centre.emplace_back(8.0 - 0.25 * i, 2.0, 0.3), across.emplace_back(0, -1, 0);
+    Mesh m;
+    const int n = 8, rings = static_cast<int>(centre.size());
+    for (int r = 0; r < rings; ++r)
+        for (int k = 0; k < n; ++k) {
+            const double a = 2 * kPi * k / n;
+            m.vertices.push_back(centre[r] + 0.3 * std::cos(a) * across[r] + Vec3(0, 0, 0.15 * std::sin(a)));
+        }
+    const int c0 = static_cast<int>(m.vertices.size());
+    m.vertices.push_back(centre.front());
+    m.vertices.push_back(centre.back());
+    for (int r = 0; r + 1 < rings; ++r)
+        for (int k = 0; k < n; ++k) {
+            const int a = r * n + k, b = r * n + (k + 1) % n, c = a + n, d = b + n;
+            m.faces.emplace_back(a, b, d);
+            m.faces.emplace_back(a, d, c);
+        }
+    for (int k = 0; k < n; ++k) {
+        m.faces.emplace_back(c0, (k + 1) % n, k);
+        m.faces.emplace_back(c0 + 1, (rings - 1) * n + k, (rings - 1) * n + (k + 1) % n);
+    }
+    if (volume(m) < 0)
+        for (Tri& t : m.faces) std::swap(t[1], t[2]);
+    return m;
+}
+
+// A span across a bent thread can hold two separate parts of it: each comes out as its own piece.
+TEST(ThreadPieces, ABentThreadCutAcrossBothLegsGivesTwoPieces) {
+    const Mesh m = hairpin();
+    ASSERT_TRUE(quilt::is_closed_oriented(m));
+    ASSERT_EQ(mq::count_self_intersections(m), 0);
+    std::vector<char> bad(m.faces.size(), 0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)  // the bend and the last stretch of both legs
+        for (int k = 0; k < 3; ++k) bad[f] = static_cast<char>(bad[f] | (m.vertices[m.faces[f][k]].x() > 7.0));
+    const auto pieces = quilt::thread_pieces(m, bad, {0.1, 2.0});
+    ASSERT_EQ(pieces.size(), 2U);
+    double y[2];
+    for (int i = 0; i < 2; ++i) {
+        expect_whole(pieces[static_cast<std::size_t>(i)]);
+        const mq::Box3 b = mq::bounding_box(pieces[static_cast<std::size_t>(i)]);
+        EXPECT_LT(b.max.x(), 7.0);
+        EXPECT_GT(b.size().x(), 6.0);
+        y[i] = 0.5 * (b.min.y() + b.max.y());
+    }
+    EXPECT_NEAR(std::abs(y[0] - y[1]), 2.0, 0.1);  // one piece per leg
+}
+
 }  // namespace

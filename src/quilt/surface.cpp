@@ -68,7 +68,7 @@ constexpr double kMendMinSize = 0.75;
 constexpr int kMendPasses = 6;
 // A new thread that collides is cut kTrimMargin of its width clear of what it meets; pieces
 // shorter than kTrimMinLength widths are dropped (a thread is more than 3 times longer than wide).
-constexpr double kTrimMargin = 0.5;
+constexpr double kTrimMargin = 0.1;
 constexpr double kTrimMinLength = 3.5;
 // A new thread reaching off its patch is cut kTrimEdgeMargin of its width inside the patch.
 constexpr double kTrimEdgeMargin = 0.25;
@@ -1611,11 +1611,10 @@ private:
     }
 
     /// Adds the pieces of new thread `mesh` (frame mesh of swatch element `source`, embedded as
-    /// `embedded`, resized by `resize` in the frame)
-    /// that stay clear of the output: cut where its faces collide, widened by half the thread's width,
-    /// pieces at least 3.5 widths long (so they stay threads for later patches). Each piece is
-    /// embedded again and must not collide or fold. Adds the pieces' frame meshes to `frames`;
-    /// true when any went in.
+    /// `embedded`, resized by `resize` in the frame) that stay clear of the output: cut where its
+    /// faces collide or are `folded`, kTrimMargin of its width clear, pieces at least kTrimMinLength
+    /// widths long (so they stay threads for later patches). Each piece is embedded again and must
+    /// not collide or fold. Adds the pieces' frame meshes to `frames`; true when any went in.
     template <class Place>
     bool trim_thread(const Mesh& mesh, int source, const Mesh& embedded, double resize, const Place& place, std::deque<Mesh>* frames,
                      const std::vector<char>& folded = {}) {

@@ -2,6 +2,7 @@
 #include "quilt/trim.h"
 
 #include "core/intersect.h"
+#include "meshquilt/analysis.h"
 #include "quilt/kernel.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -27,9 +28,9 @@ double mid_gap(const std::vector<double>& ts, double c) {
     return 0.5 * (*(it - 1) + *it);
 }
 
-/// `m` clipped to lo <= coordinate `axis` <= hi (either bound may be infinite), closed; false when
-/// CGAL fails or the result is not one closed, oriented piece without self-intersections.
-bool clip_span(const Mesh& m, int axis, double lo, double hi, Mesh* out) {
+/// `m` clipped to lo <= coordinate `axis` <= hi (either bound may be infinite), closed, as its
+/// connected components (a bent thread can leave the span and come back); false when CGAL fails.
+bool clip_span(const Mesh& m, int axis, double lo, double hi, std::vector<Mesh>* out) {
     SM sm;
     for (const Vec3& v : m.vertices) sm.add_vertex(K::Point_3(v.x(), v.y(), v.z()));
     for (const Tri& t : m.faces)
@@ -65,8 +66,23 @@ bool clip_span(const Mesh& m, int axis, double lo, double hi, Mesh* out) {
         if (k != 3) return false;
         r.faces.push_back(t);
     }
-    if (r.faces.empty() || !is_closed_oriented(r) || count_self_intersections(r, 1) > 0) return false;
-    *out = std::move(r);
+    int count = 0;
+    const std::vector<int> component = connected_components(r, &count);
+    out->assign(static_cast<std::size_t>(count), Mesh());
+    std::vector<int> local(r.vertices.size(), -1);
+    for (std::size_t f = 0; f < r.faces.size(); ++f) {
+        Mesh& piece = (*out)[static_cast<std::size_t>(component[f])];
+        Tri t{};
+        for (int k = 0; k < 3; ++k) {
+            int& l = local[static_cast<std::size_t>(r.faces[f][k])];
+            if (l < 0) {
+                l = static_cast<int>(piece.vertices.size());
+                piece.vertices.push_back(r.vertices[static_cast<std::size_t>(r.faces[f][k])]);
+            }
+            t[k] = l;
+        }
+        piece.faces.push_back(t);
+    }
     return true;
 }
 }  // namespace
@@ -107,8 +123,13 @@ std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, con
         if (hi - lo < cut.min_length) continue;
         const double a = lo > t0 ? mid_gap(ts, lo) : -inf;
         const double b = hi < t1 ? mid_gap(ts, hi) : inf;
-        Mesh piece;
-        if (clip_span(m, axis, a, b, &piece)) pieces.push_back(std::move(piece));
+        std::vector<Mesh> parts;
+        if (!clip_span(m, axis, a, b, &parts)) continue;
+        for (Mesh& piece : parts) {
+            const Vec3 size = bounding_box(piece).size();
+            if (std::max(size.x(), size.y()) < cut.min_length || !is_closed_oriented(piece) || count_self_intersections(piece, 1) > 0) continue;
+            pieces.push_back(std::move(piece));
+        }
     }
     return pieces;
 }

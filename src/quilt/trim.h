@@ -22,8 +22,10 @@ struct ThreadCut {
 /// blocks the span it covers along that axis, widened by `cut.margin`; each free span of at least
 /// `cut.min_length` becomes a closed piece, cut by planes across the axis (placed midway between
 /// the nearest vertices, so no sliver faces) and capped flat (CGAL::Polygon_mesh_processing::clip
-/// with clip_volume). Pieces that do not come out closed, oriented and free of self-intersections
-/// are left out. Without any flagged face the result is `m` itself.
+/// with clip_volume). A span that cuts a bent thread into several parts gives each as a piece.
+/// Pieces that do not come out closed, oriented and free of self-intersections, or whose longer
+/// side in xy is below `cut.min_length`, are left out. Without any flagged face the result is `m`
+/// itself.
 std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut);
 
 }  // namespace meshquilt::quilt
