@@ -25,23 +25,20 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// A closed thread along x (or y with `along_y`): an elliptic tube (half-widths 0.4 across, 0.15 in
-/// height) from 0 to `length`, `rings` cross-sections of 8 vertices, a little wavy so no two
-/// cross-sections share an x, capped at both ends by a fan around a centre vertex.
-Mesh thread(double length, int rings, bool along_y = false) {
+/// A closed tube swept along `centre` (cross-section: half-width `w` along `across`, half-height
+/// `h` along z, 8 vertices), capped by a fan at each end; outward when `flip` is false and the
+/// centre line runs with x and `across` points to +y (swap for other frames).
+Mesh sweep(const std::vector<Vec3>& centre, const std::vector<Vec3>& across, double w, double h, bool flip) {
     Mesh m;
-    const int n = 8;
-    for (int r = 0; r < rings; ++r) {
-        const double x = length * r / (rings - 1);
+    const int n = 8, rings = static_cast<int>(centre.size());
+    for (int r = 0; r < rings; ++r)
         for (int k = 0; k < n; ++k) {
             const double a = 2 * kPi * k / n;
-            const double y = 0.4 * std::cos(a) + 0.05 * std::sin(x), z = 0.2 + 0.15 * std::sin(a);
-            m.vertices.push_back(along_y ? Vec3(y, x, z) : Vec3(x, y, z));
+            m.vertices.push_back(centre[r] + w * std::cos(a) * across[r] + Vec3(0, 0, h * std::sin(a)));
         }
-    }
     const int c0 = static_cast<int>(m.vertices.size());
-    m.vertices.push_back(along_y ? Vec3(0.0, 0.0, 0.2) : Vec3(0.0, 0.0, 0.2));
-    m.vertices.push_back(along_y ? Vec3(0.05 * std::sin(length), length, 0.2) : Vec3(length, 0.05 * std::sin(length), 0.2));
+    m.vertices.push_back(centre.front());
+    m.vertices.push_back(centre.back());
     for (int r = 0; r + 1 < rings; ++r)
         for (int k = 0; k < n; ++k) {
             const int a = r * n + k, b = r * n + (k + 1) % n, c = a + n, d = b + n;
@@ -52,9 +49,22 @@ Mesh thread(double length, int rings, bool along_y = false) {
         m.faces.emplace_back(c0, (k + 1) % n, k);
         m.faces.emplace_back(c0 + 1, (rings - 1) * n + k, (rings - 1) * n + (k + 1) % n);
     }
-    if (along_y)
-        for (Tri& t : m.faces) std::swap(t[1], t[2]);  // the swap of x and y mirrored it
+    if (flip)
+        for (Tri& t : m.faces) std::swap(t[1], t[2]);
     return m;
+}
+
+/// A closed thread along x (or y with `along_y`): an elliptic tube (half-widths 0.4 across, 0.15 in
+/// height) from 0 to `length`, `rings` cross-sections, a little wavy so no two cross-sections
+/// share an x.
+Mesh thread(double length, int rings, bool along_y = false) {
+    std::vector<Vec3> centre, across;
+    for (int r = 0; r < rings; ++r) {
+        const double x = length * r / (rings - 1);
+        centre.push_back(along_y ? Vec3(0.05 * std::sin(x), x, 0.2) : Vec3(x, 0.05 * std::sin(x), 0.2));
+        across.push_back(along_y ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+    }
+    return sweep(centre, across, 0.4, 0.15, along_y);  // the swap of x and y mirrors it
 }
 
 double volume(const Mesh& m) {
@@ -128,7 +138,7 @@ TEST(ThreadPieces, DropsPiecesShorterThanTheMinimum) {
 }
 
 /// A hairpin: a closed tube (radius 0.3 across, 0.15 in height) along x from 0 to 8 at y = 0,
-/// round a half circle of radius 1, and back along y = 2; capped by fans.
+/// round a half circle of radius 1, and back along y = 2.
 Mesh hairpin() {
     std::vector<Vec3> centre, across;
     for (int i = 0; i <= 32; ++i) centre.emplace_back(0.25 * i, 0.0, 0.3), across.emplace_back(0, 1, 0);
@@ -138,26 +148,7 @@ Mesh hairpin() {
         across.emplace_back(-std::cos(a), -std::sin(a), 0);
     }
     for (int i = 0; i <= 32; ++i) centre.emplace_back(8.0 - 0.25 * i, 2.0, 0.3), across.emplace_back(0, -1, 0);
-    Mesh m;
-    const int n = 8, rings = static_cast<int>(centre.size());
-    for (int r = 0; r < rings; ++r)
-        for (int k = 0; k < n; ++k) {
-            const double a = 2 * kPi * k / n;
-            m.vertices.push_back(centre[r] + 0.3 * std::cos(a) * across[r] + Vec3(0, 0, 0.15 * std::sin(a)));
-        }
-    const int c0 = static_cast<int>(m.vertices.size());
-    m.vertices.push_back(centre.front());
-    m.vertices.push_back(centre.back());
-    for (int r = 0; r + 1 < rings; ++r)
-        for (int k = 0; k < n; ++k) {
-            const int a = r * n + k, b = r * n + (k + 1) % n, c = a + n, d = b + n;
-            m.faces.emplace_back(a, b, d);
-            m.faces.emplace_back(a, d, c);
-        }
-    for (int k = 0; k < n; ++k) {
-        m.faces.emplace_back(c0, (k + 1) % n, k);
-        m.faces.emplace_back(c0 + 1, (rings - 1) * n + k, (rings - 1) * n + (k + 1) % n);
-    }
+    Mesh m = sweep(centre, across, 0.3, 0.15, false);
     if (volume(m) < 0)
         for (Tri& t : m.faces) std::swap(t[1], t[2]);
     return m;
