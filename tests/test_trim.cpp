@@ -122,6 +122,26 @@ TEST(ThreadPieces, CutsAroundACrossingBarAndCapsBothPieces) {
     }
 }
 
+// The longest free span bounds the pieces: measured as thread_pieces measures spans.
+TEST(ThreadPieces, LongestFreeSpanBoundsEveryPiece) {
+    const Mesh m = thread(10.0, 41);
+    EXPECT_NEAR(quilt::longest_free_span(m, std::vector<char>(m.faces.size(), 0), 0.3), 10.0, 1e-9);
+    EXPECT_EQ(quilt::longest_free_span(m, std::vector<char>(m.faces.size(), 1), 0.3), 0.0);
+    EXPECT_EQ(quilt::longest_free_span(Mesh(), {}, 0.3), 0.0);
+    EXPECT_EQ(quilt::longest_free_span(m, {}, 0.3), 0.0);  // flags of the wrong size
+    // Faces between cross-sections 19 and 22 (x = 4.75 to 5.5) flagged, 0.3 margin: free are
+    // [0, 4.45] and [5.8, 10].
+    std::vector<char> bad(m.faces.size(), 0);
+    for (int r = 19; r < 22; ++r)
+        for (int k = 0; k < 16; ++k) bad[static_cast<std::size_t>(r * 16 + k)] = 1;
+    const double longest = quilt::longest_free_span(m, bad, 0.3);
+    EXPECT_NEAR(longest, 4.45, 1e-9);
+    const auto pieces = quilt::thread_pieces(m, bad, {0.3, 1.0});
+    ASSERT_EQ(pieces.size(), 2U);
+    for (const Mesh& p : pieces) EXPECT_LE(mq::bounding_box(p).size().x(), longest + 1e-9);
+    EXPECT_TRUE(quilt::thread_pieces(m, bad, {0.3, longest + 0.01}).empty());
+}
+
 TEST(ThreadPieces, DropsPiecesShorterThanTheMinimum) {
     const Mesh m = thread(10.0, 41);
     std::vector<char> bad(m.faces.size(), 0);

@@ -85,31 +85,26 @@ bool clip_span(const Mesh& m, int axis, double lo, double hi, std::vector<Mesh>*
     }
     return true;
 }
-}  // namespace
 
-std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut) {
-    if (m.faces.empty() || bad.size() != m.faces.size()) return {};
-    if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return {m};
+/// The spans along the axis of thread `m` (set in `axis`) left free by its faces flagged in `bad`,
+/// each widened by `margin`, in order.
+std::vector<std::pair<double, double>> free_spans(const Mesh& m, const std::vector<char>& bad, double margin, int* axis) {
     const Box3 box = bounding_box(m);
-    const int axis = box.size().x() >= box.size().y() ? 0 : 1;
+    *axis = box.size().x() >= box.size().y() ? 0 : 1;
     // Spans blocked by flagged faces, merged.
     std::vector<std::pair<double, double>> blocked;
     for (std::size_t f = 0; f < m.faces.size(); ++f) {
         if (!bad[f]) continue;
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (int k = 0; k < 3; ++k) {
-            const double t = m.vertices[static_cast<std::size_t>(m.faces[f][k])][axis];
+            const double t = m.vertices[static_cast<std::size_t>(m.faces[f][k])][*axis];
             lo = std::min(lo, t);
             hi = std::max(hi, t);
         }
-        blocked.emplace_back(lo - cut.margin, hi + cut.margin);
+        blocked.emplace_back(lo - margin, hi + margin);
     }
     std::sort(blocked.begin(), blocked.end());
-    std::vector<double> ts;
-    ts.reserve(m.vertices.size());
-    for (const Vec3& v : m.vertices) ts.push_back(v[axis]);
-    std::sort(ts.begin(), ts.end());
-    const double t0 = box.min[axis], t1 = box.max[axis];
+    const double t0 = box.min[*axis], t1 = box.max[*axis];
     std::vector<std::pair<double, double>> free;
     double from = t0;
     for (const auto& [lo, hi] : blocked) {
@@ -117,6 +112,30 @@ std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, con
         from = std::max(from, hi);
     }
     if (from < t1) free.emplace_back(from, t1);
+    return free;
+}
+
+}  // namespace
+
+double longest_free_span(const Mesh& m, const std::vector<char>& bad, double margin) {
+    if (m.faces.empty() || bad.size() != m.faces.size()) return 0.0;
+    int axis = 0;
+    double longest = 0.0;
+    for (const auto& [lo, hi] : free_spans(m, bad, margin, &axis)) longest = std::max(longest, hi - lo);
+    return longest;
+}
+
+std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut) {
+    if (m.faces.empty() || bad.size() != m.faces.size()) return {};
+    if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return {m};
+    int axis = 0;
+    const std::vector<std::pair<double, double>> free = free_spans(m, bad, cut.margin, &axis);
+    const Box3 box = bounding_box(m);
+    std::vector<double> ts;
+    ts.reserve(m.vertices.size());
+    for (const Vec3& v : m.vertices) ts.push_back(v[axis]);
+    std::sort(ts.begin(), ts.end());
+    const double t0 = box.min[axis], t1 = box.max[axis];
     std::vector<Mesh> pieces;
     const double inf = std::numeric_limits<double>::infinity();
     for (const auto& [lo, hi] : free) {

@@ -28,4 +28,9 @@ struct ThreadCut {
 /// itself.
 std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut);
 
+/// The longest span along the axis of thread `m` that its faces flagged in `bad`, widened by
+/// `margin`, leave free (as thread_pieces measures spans): no piece can be longer. The whole
+/// length without flags; 0 for an empty mesh.
+double longest_free_span(const Mesh& m, const std::vector<char>& bad, double margin);
+
 }  // namespace meshquilt::quilt
