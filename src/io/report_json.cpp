@@ -101,6 +101,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"threads_extended", s.threads_extended},
                         {"threads_trimmed", s.threads_trimmed},
                         {"thread_pieces", s.thread_pieces},
+                        {"threads_filled", s.threads_filled},
                         {"threads_cut_at_patch", s.threads_cut_at_patch},
                         {"elements_folded", s.elements_folded},
                         {"elements_nudged", s.elements_nudged},

@@ -69,9 +69,24 @@ constexpr int kMendPasses = 6;
 // A new thread that collides is cut kTrimMargin of its width clear of what it meets; pieces
 // shorter than kTrimMinLength widths are dropped (a thread is more than 3 times longer than wide).
 constexpr double kTrimMargin = 0.1;
-constexpr double kTrimMinLength = 3.5;
+constexpr double kTrimMinLength = 3.2;
 // A new thread reaching off its patch is cut kTrimEdgeMargin of its width inside the patch.
 constexpr double kTrimEdgeMargin = 0.25;
+/// A gap between the threads that run one way (fill_threads_patch) is a missing thread when its
+/// empty disc is wider in radius than this share of the swatch's spacing of those threads (a plain
+/// weave's own gaps: about 0.3, one thread missing: about 0.7).
+constexpr double kThreadGap = 0.55;
+/// Gaps tried per direction and patch at most (fill_threads_patch; 16 is more than any patch of
+/// the eight, spot or bunny had).
+constexpr int kThreadFillTries = 16;
+/// A thread laid into a gap is tried at this many shifts along itself, spread over two spacings
+/// (the period of its over and under)...
+constexpr int kThreadShifts = 8;
+/// ... of which those whose longest run clear of the crossing threads in the frame (free_run) is at
+/// least this share of kTrimMinLength widths, and at most kThreadShiftsEmbedded of them (the
+/// longest runs), are embedded and tested.
+constexpr double kThreadFreeRun = 0.5;
+constexpr std::size_t kThreadShiftsEmbedded = 4;
 
 /// The faces whose corners are all `ok`, with only the vertices they use (an element partly off a
 /// patch: its other vertices have no place in the frame, and a test reading every vertex, such as
@@ -150,6 +165,7 @@ public:
         interlocked_ = rings_ && swatch_rings_interlock();
         fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea, true);
         joints_ = quilt::prepare_joints(sw_);
+        prepare_thread_sets();
         fill_.area_floor = fill_.smallest_blob_area;
         index_ = TriangleIndex(sw_.mesh);
         const double lx = sw_.box.max.x(), ly = sw_.box.max.y();
@@ -629,6 +645,30 @@ private:
         return s >= 0 && sw_.element_genus[static_cast<std::size_t>(s)] > 0 && !quilt::is_elongated(sw_.elements[static_cast<std::size_t>(s)]);
     }
 
+    /// Thread `m` (a frame mesh) on the patch: itself when it lies wholly on it, else its parts on
+    /// it, cut kTrimEdgeMargin of its width inside (quilt/trim.h) and at least kTrimMinLength widths
+    /// long (`cut` set). With `within`, parts outside that rectangle (xy) are cut off too.
+    static std::vector<Mesh> on_patch(const Mesh& m, const quilt::PatchLocator& locator, bool* cut, const Box3* within = nullptr) {
+        std::vector<char> off(m.vertices.size(), 0);
+        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+            const Vec3& p = m.vertices[v];
+            off[v] = static_cast<char>(!locator.locate(p.head<2>(), 0.0).inside ||
+                                       (within && (p.x() < within->min.x() || p.y() < within->min.y() || p.x() > within->max.x() || p.y() > within->max.y())));
+        }
+        *cut = std::find(off.begin(), off.end(), 1) != off.end();
+        if (!*cut) return {m};
+        std::vector<char> bad(m.faces.size(), 0);
+        for (std::size_t f = 0; f < m.faces.size(); ++f)
+            for (int k = 0; k < 3; ++k) bad[f] = static_cast<char>(bad[f] | off[static_cast<std::size_t>(m.faces[f][k])]);
+        const Vec3 size = bounding_box(m).size();
+        const double width = std::min(size.x(), size.y());
+        std::vector<Mesh> out;
+        for (Mesh& piece : quilt::thread_pieces(m, bad, {kTrimEdgeMargin * width, kTrimMinLength * width}))
+            if (std::all_of(piece.vertices.begin(), piece.vertices.end(), [&](const Vec3& v) { return locator.locate(v.head<2>(), 0.0).inside; }))
+                out.push_back(std::move(piece));
+        return out;
+    }
+
     /// Returns the number of faces newly processed.
     std::size_t place_patch(int seed) {
         auto t0 = Clock::now();
@@ -713,31 +753,16 @@ private:
         const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
         std::vector<quilt::NewElement> fresh;
         for (quilt::NewElement& ne : pl.fresh) {
-            const Mesh& m = ne.mesh;
-            std::vector<char> off(m.vertices.size(), 0);
-            bool inside = true;
-            for (std::size_t v = 0; v < m.vertices.size(); ++v)
-                if (!locator.locate(m.vertices[v].head<2>(), 0.0).inside) {
-                    off[v] = 1;
-                    inside = false;
-                    if (!quilt::is_elongated(m)) break;
-                }
-            if (inside) {
-                fresh.push_back(std::move(ne));
+            if (!quilt::is_elongated(ne.mesh)) {
+                if (std::all_of(ne.mesh.vertices.begin(), ne.mesh.vertices.end(), [&](const Vec3& v) { return locator.locate(v.head<2>(), 0.0).inside; }))
+                    fresh.push_back(std::move(ne));
                 continue;
             }
-            if (!quilt::is_elongated(m)) continue;
             // Beyond the paper: a thread reaching off the patch keeps its parts on it (quilt/trim.h).
-            std::vector<char> bad(m.faces.size(), 0);
-            for (std::size_t f = 0; f < m.faces.size(); ++f)
-                for (int k = 0; k < 3; ++k) bad[f] = static_cast<char>(bad[f] | off[static_cast<std::size_t>(m.faces[f][k])]);
-            const Vec3 size = bounding_box(m).size();
-            const double width = std::min(size.x(), size.y());
-            for (Mesh& piece : quilt::thread_pieces(m, bad, {kTrimEdgeMargin * width, kTrimMinLength * width})) {
-                if (std::all_of(piece.vertices.begin(), piece.vertices.end(), [&](const Vec3& v) { return locator.locate(v.head<2>(), 0.0).inside; })) {
-                    fresh.push_back({ne.source, std::move(piece)});
-                    ++surface_.threads_cut_at_patch;
-                }
+            bool cut = false;
+            for (Mesh& piece : on_patch(ne.mesh, locator, &cut)) {
+                if (cut) ++surface_.threads_cut_at_patch;
+                fresh.push_back({ne.source, std::move(piece)});
             }
         }
         quilt::Overlap overlap;
@@ -754,6 +779,9 @@ private:
         t0 = Clock::now();
         fill_patch(flat, locator, hs, fr.local, fx0, fy0, fx1, fy1);
         stage_seconds_["bald spots"] += seconds_since(t0);
+        t0 = Clock::now();
+        fill_threads_patch(flat, locator, hs, fr.local, fx0, fy0, fx1, fy1);
+        stage_seconds_["thread gaps"] += seconds_since(t0);
         t0 = Clock::now();
         close_joints_patch(flat, locator, hs, fr.local, fx0, fy0, fx1, fy1);
         stage_seconds_["joints"] += seconds_since(t0);
@@ -1065,6 +1093,273 @@ private:
             in[k].mesh = std::move(grown);
             ++report_.joints_closed;
         }
+    }
+
+    /// The swatch's threads by the axis they run along (thread_sets_). A direction with fewer than
+    /// two threads, or threads closer than their width, has no lattice to fill (left empty).
+    void prepare_thread_sets() {
+        std::array<std::vector<double>, 2> cross, widths;
+        for (std::size_t s = 0; s < sw_.elements.size(); ++s) {
+            const Mesh& e = sw_.elements[s];
+            if (!quilt::is_elongated(e)) continue;
+            const Box3 box = bounding_box(e);
+            const Vec3 size = box.size();
+            const int along = size.x() >= size.y() ? 0 : 1;
+            thread_sets_[static_cast<std::size_t>(along)].ids.push_back(static_cast<int>(s));
+            cross[static_cast<std::size_t>(along)].push_back(0.5 * (box.min[1 - along] + box.max[1 - along]));
+            widths[static_cast<std::size_t>(along)].push_back(size[1 - along]);
+        }
+        auto median = [](std::vector<double> v) {
+            std::sort(v.begin(), v.end());
+            return v[v.size() / 2];
+        };
+        for (std::size_t a = 0; a < 2; ++a) {
+            ThreadSet& ts = thread_sets_[a];
+            if (ts.ids.size() < 2) {
+                ts.ids.clear();
+                continue;
+            }
+            std::vector<double> c = cross[a], gaps;
+            std::sort(c.begin(), c.end());
+            for (std::size_t k = 1; k < c.size(); ++k) gaps.push_back(c[k] - c[k - 1]);
+            ts.spacing = median(gaps);
+            ts.width = median(widths[a]);
+            if (!(ts.spacing > ts.width)) ts.ids.clear();
+        }
+    }
+
+    /// The axis frame mesh `m` runs along: 0 (x) or 1 (y) by its vertices' principal direction, -1
+    /// when their spread along it is within 1.5 times that across it (a stub of a thread).
+    static int run_direction(const Mesh& m) {
+        if (m.vertices.empty()) return -1;
+        Vec2 mean = Vec2::Zero();
+        for (const Vec3& v : m.vertices) mean += v.head<2>();
+        mean /= static_cast<double>(m.vertices.size());
+        double sxx = 0.0, syy = 0.0, sxy = 0.0;
+        for (const Vec3& v : m.vertices) {
+            const Vec2 d = v.head<2>() - mean;
+            sxx += d.x() * d.x();
+            syy += d.y() * d.y();
+            sxy += d.x() * d.y();
+        }
+        const double half = 0.5 * (sxx + syy), disc = std::sqrt(std::max(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy, 0.0));
+        if (half + disc < 2.25 * (half - disc)) return -1;
+        const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+        return std::fabs(std::cos(angle)) >= std::fabs(std::sin(angle)) ? 0 : 1;
+    }
+
+    /// Beyond the paper: weave seams. Where the lattices of two patches meet at an angle, the new
+    /// threads collide with the old ones and are cut (trim_thread); what is left is often a strip
+    /// without the threads of one direction, a spacing or more wide (and through it the threads of
+    /// the other direction, which a raster of all elements would count as covered). After a patch,
+    /// each direction's gaps on its footprint are found on a raster of the elements running that
+    /// way or neither way in the frame (run_direction): an empty disc wider than kThreadGap of the
+    /// swatch's spacing is a missing thread. A swatch thread is laid across it along that
+    /// direction, on the line where the crossing threads are at their tops and bottoms (knot_line),
+    /// at kThreadShifts shifts along itself over two spacings (its over and under then meet the
+    /// crossing threads one way or the other; free_run picks the shifts worth embedding); of
+    /// those, the one whose parts on the footprint and clear of everything (clear_pieces) are
+    /// longest goes in. A gap nothing fits is left; kThreadFillTries gaps per direction at most.
+    void fill_threads_patch(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, double fx0, double fy0,
+                            double fx1, double fy1) {
+        if (thread_sets_[0].ids.empty() && thread_sets_[1].ids.empty()) return;
+        const std::vector<FrameElement> near = frame_elements(flat, hs);
+        std::vector<int> runs;
+        for (const FrameElement& fe : near) runs.push_back(run_direction(fe.mesh));
+        Mesh patch;  // the flattened patch, for the ground raster
+        for (const Vec2& q : flat.uv) patch.vertices.emplace_back(q.x(), q.y(), 0.0);
+        patch.faces = flat.local;
+        auto embed = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize) {
+            return embed_sized(m, source, fresh, flat, locator, hs, local, nullptr, anchors, embedded, resize);
+        };
+        auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize) {
+            return embed(m, source, fresh, anchors, embedded, resize) && count_self_intersections(*embedded, 1) == 0;
+        };
+        // Laid threads stay on the footprint: the rest of the patch is later patches' ground.
+        const Box3 footprint{Vec3(fx0, fy0, 0.0), Vec3(fx1, fy1, 0.0)};
+        for (int along = 0; along < 2; ++along) {
+            const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
+            if (ts.ids.empty()) continue;
+            const double r = ts.spacing, pixel = 0.25 * ts.width;  // neighbours within a spacing bound the gaps
+            quilt::Coverage cov(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel), ground(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel);
+            ground.add(patch);
+            std::vector<const Mesh*> crossing;  // the elements running the other way
+            for (std::size_t k = 0; k < near.size(); ++k) {
+                if (runs[k] != 1 - along) cov.add(near[k].mesh);
+                else crossing.push_back(&near[k].mesh);
+            }
+            cov.cover_outside(ground);
+            std::vector<char> tried(static_cast<std::size_t>(cov.nx()) * static_cast<std::size_t>(cov.ny()), 0);
+            for (int attempt = 0; attempt < kThreadFillTries; ++attempt) {
+                const std::vector<double> dist = cov.empty_distance();
+                double widest = 0.0;
+                int bi = -1, bj = -1;
+                for (int j = 0; j < cov.ny(); ++j)
+                    for (int i = 0; i < cov.nx(); ++i) {
+                        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(cov.nx()) + static_cast<std::size_t>(i);
+                        const Vec2 c = cov.centre(i, j);
+                        if (tried[k] || dist[k] <= widest || c.x() < fx0 || c.y() < fy0 || c.x() >= fx1 || c.y() >= fy1) continue;
+                        widest = dist[k];
+                        bi = i;
+                        bj = j;
+                    }
+                if (bi < 0 || widest < kThreadGap * ts.spacing) break;
+                const Vec2 c = cov.centre(bi, bj);
+                Vec2 line = c;
+                line[1 - along] = knot_line(c, along, crossing);
+                std::deque<Mesh> frames;
+                if (lay_thread(line, along, crossing, locator, footprint, embed, place, &frames)) {
+                    for (const Mesh& f : frames) cov.add(f);
+                    ++surface_.threads_filled;
+                }
+                // Tried: the disc is not tried again (it may be filled in part).
+                for (int j = std::max(0, cov.row(c.y() - widest)); j <= std::min(cov.ny() - 1, cov.row(c.y() + widest)); ++j)
+                    for (int i = std::max(0, cov.column(c.x() - widest)); i <= std::min(cov.nx() - 1, cov.column(c.x() + widest)); ++i)
+                        if ((cov.centre(i, j) - c).norm() <= widest)
+                            tried[static_cast<std::size_t>(j) * static_cast<std::size_t>(cov.nx()) + static_cast<std::size_t>(i)] = 1;
+            }
+        }
+    }
+
+    /// Where across a gap (its widest point `c`) a thread laid along axis `along` meets the
+    /// `crossing` threads at their tops and bottoms, not halfway between (where it would hit them
+    /// whichever way its over and under fall): of nine lines within half a spacing of c, the one
+    /// along which the crossing threads' vertices within 1.5 spacings of c lie farthest from the
+    /// swatch's mid height on average. c's own line when no crossing thread comes near.
+    double knot_line(const Vec2& c, int along, const std::vector<const Mesh*>& crossing) const {
+        const double s = thread_sets_[static_cast<std::size_t>(along)].spacing;
+        const double mid = 0.5 * (sw_.box.min.z() + sw_.box.max.z());
+        double best = c[1 - along], best_score = -1.0;
+        for (int k = -4; k <= 4; ++k) {
+            const double y = c[1 - along] + k * s / 8.0;
+            double sum = 0.0;
+            long n = 0;
+            for (const Mesh* m : crossing)
+                for (const Vec3& v : m->vertices)
+                    if (std::fabs(v[1 - along] - y) < s / 8.0 && std::fabs(v[along] - c[along]) < 1.5 * s) {
+                        sum += std::fabs(v.z() - mid);
+                        ++n;
+                    }
+            if (n > 0 && sum / static_cast<double>(n) > best_score) {
+                best_score = sum / static_cast<double>(n);
+                best = y;
+            }
+        }
+        return best;
+    }
+
+    /// How long a stretch of thread `m` (a frame mesh running along axis `along`, `width` wide)
+    /// passes the `crossing` threads without meeting them in the frame, at most: on a grid of cells a
+    /// quarter width square over its centre line's width, a cell is blocked where the heights of
+    /// `m`'s vertices in it overlap those of the crossing threads' vertices in it (a crossing at the
+    /// wrong height); a stretch is blocked where any cell across it is. A quick bound: the surface,
+    /// not the frame, decides (lay_thread).
+    double free_run(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, double width) const {
+        const Box3 box = bounding_box(m);
+        const double cell = 0.25 * width;
+        const double t0 = box.min[along], u0 = 0.5 * (box.min[1 - along] + box.max[1 - along]) - 0.5 * width;
+        const long n = static_cast<long>(std::ceil((box.max[along] - t0) / cell)) + 1, across = 4;
+        const double inf = std::numeric_limits<double>::infinity();
+        std::vector<double> lo(static_cast<std::size_t>(n * across), inf), hi(lo.size(), -inf), cross_lo(lo.size(), inf), cross_hi(lo.size(), -inf);
+        auto index = [&](const Vec3& v) {
+            const auto i = static_cast<long>(std::floor((v[along] - t0) / cell)), j = static_cast<long>(std::floor((v[1 - along] - u0) / cell));
+            return i < 0 || i >= n || j < 0 || j >= across ? -1L : i * across + j;
+        };
+        for (const Vec3& v : m.vertices)
+            if (const long k = index(v); k >= 0) {
+                lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], v.z());
+                hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], v.z());
+            }
+        for (const Mesh* o : crossing)
+            for (const Vec3& v : o->vertices)
+                if (const long k = index(v); k >= 0) {
+                    cross_lo[static_cast<std::size_t>(k)] = std::min(cross_lo[static_cast<std::size_t>(k)], v.z());
+                    cross_hi[static_cast<std::size_t>(k)] = std::max(cross_hi[static_cast<std::size_t>(k)], v.z());
+                }
+        double longest = 0.0, run = 0.0;
+        for (long i = 0; i < n; ++i) {
+            bool blocked = false;
+            for (long j = 0; j < across; ++j) {
+                const auto k = static_cast<std::size_t>(i * across + j);
+                blocked = blocked || (lo[k] <= cross_hi[k] && cross_lo[k] <= hi[k]);
+            }
+            run = blocked ? 0.0 : run + cell;
+            longest = std::max(longest, run);
+        }
+        return longest;
+    }
+
+    /// Lays a swatch thread running along axis `along` through frame point `c` (see
+    /// fill_threads_patch); true when any of it went in (frame meshes added to `frames`).
+    /// `embed` puts a frame mesh on the surface (embed_sized), `place` also refuses one that folds.
+    template <class Embed, class Place>
+    bool lay_thread(const Vec2& c, int along, const std::vector<const Mesh*>& crossing, const quilt::PatchLocator& locator,
+                    const Box3& footprint, const Embed& embed, const Place& place, std::deque<Mesh>* frames) {
+        const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
+        const int source = ts.ids[ts.ids.size() / 2];
+        const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
+        const Box3 box = bounding_box(src);
+        std::vector<PieceFit> best;
+        double best_length = 0.0;
+        std::vector<std::pair<double, Mesh>> tries;  // frame free run, thread
+        for (int k = 0; k < kThreadShifts; ++k) {
+            Vec3 shift = Vec3::Zero();
+            shift[along] = c[along] - 0.5 * (box.min[along] + box.max[along]) + 2.0 * k * ts.spacing / kThreadShifts;
+            shift[1 - along] = c[1 - along] - 0.5 * (box.min[1 - along] + box.max[1 - along]);
+            Mesh m = src;
+            for (Vec3& v : m.vertices) v += shift;
+            const double run = free_run(m, along, crossing, ts.width);
+            if (run >= kThreadFreeRun * kTrimMinLength * ts.width) tries.emplace_back(run, std::move(m));
+        }
+        // Embedding and testing a try costs more than all else: only the kThreadShiftsEmbedded
+        // with the longest free run in the frame are.
+        std::stable_sort(tries.begin(), tries.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        if (tries.size() > kThreadShiftsEmbedded) tries.resize(kThreadShiftsEmbedded);
+        for (auto& attempt : tries) {
+            Mesh& m = attempt.second;
+            // Flagged: faces off the patch or the footprint, or that collide or fold where the
+            // part on both lies on the surface (embedded as it is: the pieces are sized below).
+            std::vector<char> on(m.vertices.size(), 0);
+            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                const Vec3& p = m.vertices[v];
+                on[v] = static_cast<char>(p.x() >= footprint.min.x() && p.y() >= footprint.min.y() && p.x() <= footprint.max.x() &&
+                                          p.y() <= footprint.max.y() && locator.locate(p.head<2>(), 0.0).inside);
+            }
+            std::vector<char> bad(m.faces.size(), 1);
+            std::vector<std::size_t> kept;  // faces of `part`, in m
+            for (std::size_t f = 0; f < m.faces.size(); ++f)
+                if (on[static_cast<std::size_t>(m.faces[f][0])] && on[static_cast<std::size_t>(m.faces[f][1])] && on[static_cast<std::size_t>(m.faces[f][2])])
+                    kept.push_back(f);
+            const Mesh part = mapped_part(m.vertices, m.faces, on);
+            std::vector<SurfacePoint> anchors;
+            Mesh embedded;
+            double resize = 1.0;
+            if (part.faces.empty() || !embed(part, source, true, &anchors, &embedded, &resize)) continue;
+            if (resize != 1.0) {  // sized for the surface (embed_sized): the whole thread as its part
+                const Vec3 o = area_centroid(part);
+                for (Vec3& v : m.vertices) v = Vec3(o.x() + resize * (v.x() - o.x()), o.y() + resize * (v.y() - o.y()), v.z());
+            }
+            const std::vector<char> hit = collider_.colliding_faces(embedded);
+            for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = hit[f];
+            const double margin = kTrimMargin * ts.width;
+            // Most tries meet crossing threads all along: no piece long enough (checked before the
+            // dearer test for folds, which only adds flags).
+            if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * ts.width) continue;
+            if (count_self_intersections(embedded, 1) > 0) {
+                const std::vector<char> folded = self_intersecting_faces(embedded);
+                for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = static_cast<char>(bad[kept[f]] | folded[f]);
+            }
+            std::vector<PieceFit> fits = clear_pieces(m, source, bad, place);
+            double length = 0.0;
+            for (const PieceFit& f : fits) length += bounding_box(f.frame).size()[along];
+            if (length > best_length) {
+                best_length = length;
+                best = std::move(fits);
+            }
+        }
+        if (best.empty()) return false;
+        add_pieces(std::move(best), source, frames);
+        return true;
     }
 
     /// Beyond the paper: bald spots of the patch's footprint (where its new elements collided or
@@ -1466,7 +1761,7 @@ private:
                const std::vector<quilt::OldElement>& old, const std::vector<Mesh>& obstacles) {
         using Kind = quilt::PatchPlan::Change::Kind;
         struct Candidate {
-            const quilt::PatchPlan::Change* change;
+            const quilt::PatchPlan::Change* change = nullptr;
             std::vector<SurfacePoint> anchors, fallback_anchors;
             Mesh embedded, fallback;
             double resize = 1.0;  ///< the element's scale in the frame for its size on the surface (embed_sized)
@@ -1496,7 +1791,8 @@ private:
         std::vector<Candidate> pending;
         std::vector<const Mesh*> applied;  // frame meshes of the changes applied, for nudging
         for (const auto& ch : plan.changes) {
-            Candidate c{&ch, {}, {}, {}, {}};
+            Candidate c;
+            c.change = &ch;
             const bool fresh = ch.kind == Kind::Added || ch.kind == Kind::Replaced;
             const auto r = reach_.find(ch.old_id);
             reach = ch.old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
@@ -1610,35 +1906,60 @@ private:
         }
     }
 
+    /// A thread's piece that fits: its frame mesh, anchors and embedding.
+    struct PieceFit {
+        Mesh frame;
+        std::vector<SurfacePoint> anchors;
+        Mesh embedded;
+    };
+
+    /// The pieces of thread `frame` (a frame mesh of swatch element `source`, at its size on the
+    /// surface) clear of its faces flagged `bad`: cut kTrimMargin of its width clear, at least
+    /// kTrimMinLength widths long (so they stay threads for later patches), each embedded again by
+    /// `place` (no resizing), colliding with nothing and not folding. Nothing is added.
+    template <class Place>
+    std::vector<PieceFit> clear_pieces(const Mesh& frame, int source, const std::vector<char>& bad, const Place& place) const {
+        const Vec3 size = bounding_box(frame).size();
+        const double width = std::min(size.x(), size.y());
+        quilt::ThreadCut cut;
+        cut.margin = kTrimMargin * width;
+        cut.min_length = kTrimMinLength * width;
+        std::vector<PieceFit> out;
+        for (Mesh& piece : quilt::thread_pieces(frame, bad, cut)) {
+            PieceFit fit;
+            if (!quilt::is_elongated(piece)) continue;  // a thread's shorter piece (its waviness widens it) is not one
+            if (!place(piece, source, false, &fit.anchors, &fit.embedded, nullptr)) continue;
+            if (collider_.collides(fit.embedded)) continue;
+            fit.frame = std::move(piece);
+            out.push_back(std::move(fit));
+        }
+        return out;
+    }
+
+    /// Adds `fits` (pieces of swatch element `source`) to the output and their frame meshes to `frames`.
+    void add_pieces(std::vector<PieceFit> fits, int source, std::deque<Mesh>* frames) {
+        for (PieceFit& fit : fits) {
+            add_element(std::move(fit.anchors), fit.frame.faces, std::move(fit.embedded), source);
+            frames->push_back(std::move(fit.frame));
+            ++surface_.thread_pieces;
+        }
+    }
+
     /// Adds the pieces of new thread `mesh` (frame mesh of swatch element `source`, embedded as
-    /// `embedded`, resized by `resize` in the frame) that stay clear of the output: cut where its
-    /// faces collide or are `folded`, kTrimMargin of its width clear, pieces at least kTrimMinLength
-    /// widths long (so they stay threads for later patches). Each piece is embedded again and must
-    /// not collide or fold. Adds the pieces' frame meshes to `frames`; true when any went in.
+    /// `embedded`, resized by `resize` in the frame) that stay clear of the output (clear_pieces): cut
+    /// where its faces collide or are `folded`. Adds the pieces' frame meshes to `frames`; true when
+    /// any went in.
     template <class Place>
     bool trim_thread(const Mesh& mesh, int source, const Mesh& embedded, double resize, const Place& place, std::deque<Mesh>* frames,
                      const std::vector<char>& folded = {}) {
         std::vector<char> bad = collider_.colliding_faces(embedded);
         for (std::size_t f = 0; f < folded.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | folded[f]);
         if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return false;
-        const Mesh frame = resized_in_frame(mesh, resize);
-        const Vec3 size = bounding_box(frame).size();
-        const double width = std::min(size.x(), size.y());
-        quilt::ThreadCut cut;
-        cut.margin = kTrimMargin * width;
-        cut.min_length = kTrimMinLength * width;
-        bool any = false;
-        for (Mesh& piece : quilt::thread_pieces(frame, bad, cut)) {
-            std::vector<SurfacePoint> anchors;
-            Mesh placed;
-            if (!place(piece, source, false, &anchors, &placed, nullptr) || collider_.collides(placed)) continue;
-            add_element(std::move(anchors), piece.faces, std::move(placed), source);
-            frames->push_back(std::move(piece));
-            ++surface_.thread_pieces;
-            any = true;
-        }
-        if (any) ++surface_.threads_trimmed;
-        return any;
+        std::vector<PieceFit> fits = clear_pieces(resized_in_frame(mesh, resize), source, bad, place);
+        if (fits.empty()) return false;
+        ++surface_.threads_trimmed;
+        add_pieces(std::move(fits), source, frames);
+        return true;
     }
 
     /// Does frame mesh `m` of swatch element `source` keep the swatch's clearance (near_gap, vertex
@@ -1898,6 +2219,13 @@ private:
     TriangleIndex index_;
     quilt::KernelParams params_;
     quilt::FillSetup fill_;
+    /// The swatch's threads running along x (0) and along y (1) (prepare_thread_sets).
+    struct ThreadSet {
+        std::vector<int> ids;  ///< swatch elements
+        double spacing = 0.0;  ///< median distance between neighbouring centre lines
+        double width = 0.0;    ///< median width
+    };
+    std::array<ThreadSet, 2> thread_sets_;
     quilt::JointSetup joints_;
     double cell_ = 1.0;
     int sx_ = 0, sy_ = 0, k_ = 0;
