@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // Cutting threads where they collide (quilt/trim.h: thread_pieces): pieces are closed, oriented,
 // free of self-intersections, keep clear of the flagged faces by the margin, and drop what is too
-// short.
+// short. Weaving a thread through crossing threads (quilt::woven) clears them within the height.
 
 #include "core/intersect.h"
 #include "quilt/kernel.h"
@@ -196,3 +196,64 @@ TEST(ThreadPieces, ABentThreadCutAcrossBothLegsGivesTwoPieces) {
 }
 
 }  // namespace
+
+namespace {
+
+/// A straight tube along y at `x` from y = -2 to 2 (41 cross-sections), centred at height `z`,
+/// half-width 0.4, half-height 0.15: a crossing thread at one height.
+Mesh crossing_at(double x, double z) {
+    std::vector<Vec3> centre, across;
+    for (int r = 0; r <= 40; ++r) {
+        centre.emplace_back(x, -2.0 + 0.1 * r, z);
+        across.emplace_back(1, 0, 0);
+    }
+    return sweep(centre, across, 0.4, 0.15, true);
+}
+
+}  // namespace
+
+TEST(Woven, PassesOverAndUnderIrregularCrossingThreadsWithinTheHeight) {
+    // A thread along x at mid height (0.3-0.7 of [0, 1]) meets six crossing threads, low or high in
+    // no regular order and at irregular spacings: straight, it cuts through every one of them.
+    std::vector<Vec3> centre, across;
+    for (int r = 0; r <= 100; ++r) {
+        centre.emplace_back(0.1 * r, 0.0, 0.5);
+        across.emplace_back(0, 1, 0);
+    }
+    const Mesh straight = sweep(centre, across, 0.4, 0.2, false);
+    ASSERT_TRUE(quilt::is_closed_oriented(straight));
+    const std::vector<std::pair<double, double>> at = {{1.3, 0.25}, {2.9, 0.25}, {4.2, 0.75}, {6.1, 0.25}, {7.4, 0.75}, {8.8, 0.75}};
+    std::vector<Mesh> crossing;
+    for (const auto& [x, z] : at) crossing.push_back(crossing_at(x, z));
+    std::vector<const Mesh*> ptrs;
+    for (const Mesh& c : crossing) {
+        ASSERT_TRUE(mq::meshes_intersect(straight, c));
+        ptrs.push_back(&c);
+    }
+    const Mesh w = quilt::woven(straight, 0, ptrs, 0.8, 0.0, 1.0);
+    // Woven: it clears every crossing thread, stays within the height, keeps its xy and stays whole.
+    ASSERT_EQ(w.vertices.size(), straight.vertices.size());
+    EXPECT_EQ(w.faces, straight.faces);
+    for (std::size_t v = 0; v < w.vertices.size(); ++v) {
+        EXPECT_EQ(w.vertices[v].x(), straight.vertices[v].x());
+        EXPECT_EQ(w.vertices[v].y(), straight.vertices[v].y());
+        EXPECT_GE(w.vertices[v].z(), -1e-9);
+        EXPECT_LE(w.vertices[v].z(), 1.0 + 1e-9);
+    }
+    for (std::size_t k = 0; k < crossing.size(); ++k) EXPECT_FALSE(mq::meshes_intersect(w, crossing[k])) << "crossing thread " << k;
+    expect_whole(w);
+    // Over a low thread, under a high one.
+    for (const auto& [x, z] : at) {
+        double lo = 2.0, hi = -1.0;
+        for (const Vec3& v : w.vertices)
+            if (std::fabs(v.x() - x) < 0.05) {
+                lo = std::min(lo, v.z());
+                hi = std::max(hi, v.z());
+            }
+        if (z < 0.5) EXPECT_GT(lo, z + 0.15) << "over the thread at x = " << x;
+        else EXPECT_LT(hi, z - 0.15) << "under the thread at x = " << x;
+    }
+    // Nothing to weave through: the thread itself.
+    const Mesh same = quilt::woven(straight, 0, {}, 0.8, 0.0, 1.0);
+    EXPECT_EQ(same.vertices, straight.vertices);
+}

@@ -79,9 +79,11 @@ constexpr double kThreadGap = 0.55;
 /// Gaps tried per direction and patch at most (fill_threads_patch; 16 is more than any patch of
 /// the eight, spot or bunny had).
 constexpr int kThreadFillTries = 16;
-/// A thread laid into a gap is tried at this many shifts along itself, spread over two spacings
-/// (the period of its over and under)...
-constexpr int kThreadShifts = 8;
+/// A thread laid into a gap is tried on kThreadLines lines an eighth of a spacing apart across
+/// it, centred on the gap's knot line, at kThreadShifts shifts along itself over two spacings
+/// (where its ends and its waviness fall), woven through the crossing threads (quilt::woven)...
+constexpr int kThreadLines = 5;
+constexpr int kThreadShifts = 4;
 /// ... of which those whose longest run clear of the crossing threads in the frame (free_run) is at
 /// least this share of kTrimMinLength widths, and at most kThreadShiftsEmbedded of them (the
 /// longest runs), are embedded and tested.
@@ -1155,11 +1157,13 @@ private:
     /// each direction's gaps on its footprint are found on a raster of the elements running that
     /// way or neither way in the frame (run_direction): an empty disc wider than kThreadGap of the
     /// swatch's spacing is a missing thread. A swatch thread is laid across it along that
-    /// direction, on the line where the crossing threads are at their tops and bottoms (knot_line),
-    /// at kThreadShifts shifts along itself over two spacings (its over and under then meet the
-    /// crossing threads one way or the other; free_run picks the shifts worth embedding); of
-    /// those, the one whose parts on the footprint and clear of everything (clear_pieces) are
-    /// longest goes in. A gap nothing fits is left; kThreadFillTries gaps per direction at most.
+    /// direction, near the line where the crossing threads are at their tops and bottoms
+    /// (knot_line), at its size on the surface, and woven through the crossing threads (quilt/trim.h:
+    /// over or under each, where there is more room); of kThreadLines x kThreadShifts such tries
+    /// (free_run picks those worth embedding), the one whose parts on the footprint and clear of
+    /// everything (clear_pieces) are longest goes in. Threads laid in the first direction are
+    /// crossing threads for the second. A gap nothing fits is left; kThreadFillTries gaps per
+    /// direction at most.
     void fill_threads_patch(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, double fx0, double fy0,
                             double fx1, double fy1) {
         if (thread_sets_[0].ids.empty() && thread_sets_[1].ids.empty()) return;
@@ -1177,17 +1181,19 @@ private:
         };
         // Laid threads stay on the footprint: the rest of the patch is later patches' ground.
         const Box3 footprint{Vec3(fx0, fy0, 0.0), Vec3(fx1, fy1, 0.0)};
+        std::array<std::deque<Mesh>, 2> laid;  // frame meshes of the threads laid here, by direction
         for (int along = 0; along < 2; ++along) {
             const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
             if (ts.ids.empty()) continue;
             const double r = ts.spacing, pixel = 0.25 * ts.width;  // neighbours within a spacing bound the gaps
             quilt::Coverage cov(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel), ground(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel);
             ground.add(patch);
-            std::vector<const Mesh*> crossing;  // the elements running the other way
+            std::vector<const Mesh*> crossing;  // the elements running the other way, and those laid that way
             for (std::size_t k = 0; k < near.size(); ++k) {
                 if (runs[k] != 1 - along) cov.add(near[k].mesh);
                 else crossing.push_back(&near[k].mesh);
             }
+            for (const Mesh& m : laid[static_cast<std::size_t>(1 - along)]) crossing.push_back(&m);  // laid just now
             cov.cover_outside(ground);
             std::vector<char> tried(static_cast<std::size_t>(cov.nx()) * static_cast<std::size_t>(cov.ny()), 0);
             for (int attempt = 0; attempt < kThreadFillTries; ++attempt) {
@@ -1209,7 +1215,10 @@ private:
                 line[1 - along] = knot_line(c, along, crossing);
                 std::deque<Mesh> frames;
                 if (lay_thread(line, along, crossing, locator, footprint, embed, place, &frames)) {
-                    for (const Mesh& f : frames) cov.add(f);
+                    for (Mesh& f : frames) {
+                        cov.add(f);
+                        laid[static_cast<std::size_t>(along)].push_back(std::move(f));
+                    }
                     ++surface_.threads_filled;
                 }
                 // Tried: the disc is not tried again (it may be filled in part).
@@ -1227,7 +1236,8 @@ private:
     /// along which the crossing threads' vertices within 1.5 spacings of c lie farthest from the
     /// swatch's mid height on average. c's own line when no crossing thread comes near.
     double knot_line(const Vec2& c, int along, const std::vector<const Mesh*>& crossing) const {
-        const double s = thread_sets_[static_cast<std::size_t>(along)].spacing;
+        const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
+        const double s = ts.spacing;
         const double mid = 0.5 * (sw_.box.min.z() + sw_.box.max.z());
         double best = c[1 - along], best_score = -1.0;
         for (int k = -4; k <= 4; ++k) {
@@ -1301,16 +1311,49 @@ private:
         const Box3 box = bounding_box(src);
         std::vector<PieceFit> best;
         double best_length = 0.0;
-        std::vector<std::pair<double, Mesh>> tries;  // frame free run, thread
-        for (int k = 0; k < kThreadShifts; ++k) {
+        // The swatch thread through c, shifted k / kThreadShifts of two spacings along itself and
+        // `du` across.
+        auto shifted = [&](int k, double du) {
             Vec3 shift = Vec3::Zero();
             shift[along] = c[along] - 0.5 * (box.min[along] + box.max[along]) + 2.0 * k * ts.spacing / kThreadShifts;
-            shift[1 - along] = c[1 - along] - 0.5 * (box.min[1 - along] + box.max[1 - along]);
+            shift[1 - along] = c[1 - along] + du - 0.5 * (box.min[1 - along] + box.max[1 - along]);
             Mesh m = src;
             for (Vec3& v : m.vertices) v += shift;
-            const double run = free_run(m, along, crossing, ts.width);
-            if (run >= kThreadFreeRun * kTrimMinLength * ts.width) tries.emplace_back(run, std::move(m));
+            return m;
+        };
+        // The part of `m` on the patch and the footprint; `kept` its faces in m.
+        auto on_footprint = [&](const Mesh& m, std::vector<std::size_t>* kept) {
+            std::vector<char> on(m.vertices.size(), 0);
+            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                const Vec3& p = m.vertices[v];
+                on[v] = static_cast<char>(p.x() >= footprint.min.x() && p.y() >= footprint.min.y() && p.x() <= footprint.max.x() &&
+                                          p.y() <= footprint.max.y() && locator.locate(p.head<2>(), 0.0).inside);
+            }
+            for (std::size_t f = 0; f < m.faces.size(); ++f)
+                if (on[static_cast<std::size_t>(m.faces[f][0])] && on[static_cast<std::size_t>(m.faces[f][1])] && on[static_cast<std::size_t>(m.faces[f][2])])
+                    kept->push_back(f);
+            return mapped_part(m.vertices, m.faces, on);
+        };
+        // The thread's size on the surface (embed_sized): its part through c, embedded as a new
+        // element, gives the scale in the frame; every try is scaled by it about c before it is
+        // woven through the crossing threads (which are where they are on the surface).
+        double resize = 1.0;
+        {
+            std::vector<std::size_t> kept;
+            const Mesh part = on_footprint(shifted(0, 0.0), &kept);
+            std::vector<SurfacePoint> anchors;
+            Mesh embedded;
+            if (part.faces.empty() || !embed(part, source, true, &anchors, &embedded, &resize)) resize = 1.0;
         }
+        std::vector<std::pair<double, Mesh>> tries;  // frame free run, thread
+        for (int line = 0; line < kThreadLines; ++line)
+            for (int k = 0; k < kThreadShifts; ++k) {
+                Mesh m = shifted(k, (line - kThreadLines / 2) * ts.spacing / 8.0);
+                for (Vec3& v : m.vertices) v = Vec3(c.x() + resize * (v.x() - c.x()), c.y() + resize * (v.y() - c.y()), v.z());
+                Mesh w = quilt::woven(m, along, crossing, resize * ts.width, sw_.box.min.z(), sw_.box.max.z());
+                const double run = free_run(w, along, crossing, ts.width);
+                if (run >= kThreadFreeRun * kTrimMinLength * ts.width) tries.emplace_back(run, std::move(w));
+            }
         // Embedding and testing a try costs more than all else: only the kThreadShiftsEmbedded
         // with the longest free run in the frame are.
         std::stable_sort(tries.begin(), tries.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1318,27 +1361,13 @@ private:
         for (auto& attempt : tries) {
             Mesh& m = attempt.second;
             // Flagged: faces off the patch or the footprint, or that collide or fold where the
-            // part on both lies on the surface (embedded as it is: the pieces are sized below).
-            std::vector<char> on(m.vertices.size(), 0);
-            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-                const Vec3& p = m.vertices[v];
-                on[v] = static_cast<char>(p.x() >= footprint.min.x() && p.y() >= footprint.min.y() && p.x() <= footprint.max.x() &&
-                                          p.y() <= footprint.max.y() && locator.locate(p.head<2>(), 0.0).inside);
-            }
+            // part on both lies on the surface.
+            std::vector<std::size_t> kept;
+            const Mesh part = on_footprint(m, &kept);
             std::vector<char> bad(m.faces.size(), 1);
-            std::vector<std::size_t> kept;  // faces of `part`, in m
-            for (std::size_t f = 0; f < m.faces.size(); ++f)
-                if (on[static_cast<std::size_t>(m.faces[f][0])] && on[static_cast<std::size_t>(m.faces[f][1])] && on[static_cast<std::size_t>(m.faces[f][2])])
-                    kept.push_back(f);
-            const Mesh part = mapped_part(m.vertices, m.faces, on);
             std::vector<SurfacePoint> anchors;
             Mesh embedded;
-            double resize = 1.0;
-            if (part.faces.empty() || !embed(part, source, true, &anchors, &embedded, &resize)) continue;
-            if (resize != 1.0) {  // sized for the surface (embed_sized): the whole thread as its part
-                const Vec3 o = area_centroid(part);
-                for (Vec3& v : m.vertices) v = Vec3(o.x() + resize * (v.x() - o.x()), o.y() + resize * (v.y() - o.y()), v.z());
-            }
+            if (part.faces.empty() || !embed(part, source, false, &anchors, &embedded, nullptr)) continue;
             const std::vector<char> hit = collider_.colliding_faces(embedded);
             for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = hit[f];
             const double margin = kTrimMargin * ts.width;

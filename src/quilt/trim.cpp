@@ -115,6 +115,73 @@ std::vector<std::pair<double, double>> free_spans(const Mesh& m, const std::vect
     return free;
 }
 
+/// The median over cells `cell` long along axis `along` of the height spanned by thread `m`'s
+/// vertices in each (its thickness; 0 without vertices).
+double thread_thickness(const Mesh& m, int along, double cell) {
+    if (m.vertices.empty()) return 0.0;
+    const Box3 box = bounding_box(m);
+    const double t0 = box.min[along];
+    const long n = static_cast<long>(std::ceil((box.max[along] - t0) / cell)) + 1;
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> lo(static_cast<std::size_t>(n), inf), hi(lo.size(), -inf);
+    for (const Vec3& v : m.vertices) {
+        const auto i = static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor((v[along] - t0) / cell)), 0L, n - 1));
+        lo[i] = std::min(lo[i], v.z());
+        hi[i] = std::max(hi[i], v.z());
+    }
+    std::vector<double> t;
+    for (std::size_t i = 0; i < lo.size(); ++i)
+        if (hi[i] > -inf) t.push_back(hi[i] - lo[i]);
+    std::nth_element(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(t.size() / 2), t.end());
+    return t[t.size() / 2];
+}
+
+/// A crossing thread met by a thread along axis `along`: the middle of its run of cells (in
+/// cells from t0) and the lowest and highest heights of its vertices there.
+struct CrossingRun {
+    double at, lo, hi;
+};
+
+/// The runs of the `crossing` threads' vertices within `width` / 2 of line `u` (across axis
+/// `along`), on `n` cells of length `cell` from `t0` along it.
+static std::vector<CrossingRun> crossing_runs(int along, double u, double width, double t0, double cell, long n,
+                                              const std::vector<const Mesh*>& crossing) {
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> lo(static_cast<std::size_t>(n), inf), hi(lo.size(), -inf);
+    for (const Mesh* o : crossing)
+        for (const Vec3& v : o->vertices) {
+            const auto i = static_cast<long>(std::floor((v[along] - t0) / cell));
+            if (i < 0 || i >= n || std::fabs(v[1 - along] - u) > 0.5 * width) continue;
+            lo[static_cast<std::size_t>(i)] = std::min(lo[static_cast<std::size_t>(i)], v.z());
+            hi[static_cast<std::size_t>(i)] = std::max(hi[static_cast<std::size_t>(i)], v.z());
+        }
+    std::vector<CrossingRun> runs;
+    for (long i = 0; i < n;) {
+        if (!(hi[static_cast<std::size_t>(i)] > -inf)) {
+            ++i;
+            continue;
+        }
+        long j = i;
+        CrossingRun r{0.0, inf, -inf};
+        for (; j < n && hi[static_cast<std::size_t>(j)] > -inf; ++j) {
+            r.lo = std::min(r.lo, lo[static_cast<std::size_t>(j)]);
+            r.hi = std::max(r.hi, hi[static_cast<std::size_t>(j)]);
+        }
+        r.at = 0.5 * static_cast<double>(i + j - 1);
+        runs.push_back(r);
+        i = j;
+    }
+    return runs;
+}
+
+/// Where a thread `thick` high passes crossing run `r` between heights zmin and zmax: its centre
+/// in the middle of the larger room above or below it, kept inside [zmin, zmax].
+double pass(const CrossingRun& r, double thick, double zmin, double zmax) {
+    const double over = zmax - r.hi, under = r.lo - zmin;
+    const double z = over >= under ? r.hi + 0.5 * over : zmin + 0.5 * under;
+    return std::clamp(z, zmin + 0.5 * thick, std::max(zmax - 0.5 * thick, zmin + 0.5 * thick));
+}
+
 }  // namespace
 
 double longest_free_span(const Mesh& m, const std::vector<char>& bad, double margin) {
@@ -151,6 +218,55 @@ std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, con
         }
     }
     return pieces;
+}
+
+Mesh woven(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, double width, double zmin, double zmax) {
+    const Box3 box = bounding_box(m);
+    const double cell = 0.25 * width, u = 0.5 * (box.min[1 - along] + box.max[1 - along]);
+    const double t0 = box.min[along];
+    const long n = static_cast<long>(std::ceil((box.max[along] - t0) / cell)) + 1;
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> lo(static_cast<std::size_t>(n), inf), hi(lo.size(), -inf);
+    for (const Vec3& v : m.vertices) {
+        const auto i = static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor((v[along] - t0) / cell)), 0L, n - 1));
+        lo[i] = std::min(lo[i], v.z());
+        hi[i] = std::max(hi[i], v.z());
+    }
+    // Knots: (cell at the middle of a crossing run, target centre height), the thread's
+    // height its median thickness across the cells.
+    const double thick = thread_thickness(m, along, cell);
+    std::vector<std::pair<double, double>> knots;
+    for (const CrossingRun& r : crossing_runs(along, u, width, t0, cell, n, crossing)) knots.emplace_back(r.at, pass(r, thick, zmin, zmax));
+    if (knots.empty()) return m;
+    // The thread's own centre line, per bin (empty bins take their neighbours').
+    std::vector<double> centre(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < centre.size(); ++i)
+        if (hi[i] > -inf) centre[i] = 0.5 * (lo[i] + hi[i]);
+    for (std::size_t i = 1; i < centre.size(); ++i)
+        if (std::isnan(centre[i])) centre[i] = centre[i - 1];
+    for (std::size_t i = centre.size() - 1; i-- > 0;)
+        if (std::isnan(centre[i])) centre[i] = centre[i + 1];
+    auto target = [&](double b) {
+        if (b <= knots.front().first) return knots.front().second;
+        if (b >= knots.back().first) return knots.back().second;
+        std::size_t k = 1;
+        while (knots[k].first < b) ++k;
+        const double s = (b - knots[k - 1].first) / (knots[k].first - knots[k - 1].first);
+        const double ease = 0.5 - 0.5 * std::cos(s * 3.14159265358979323846);
+        return knots[k - 1].second + ease * (knots[k].second - knots[k - 1].second);
+    };
+    auto own = [&](double b) {
+        const double f = std::clamp(b, 0.0, static_cast<double>(n - 1));
+        const auto i = static_cast<std::size_t>(std::min(static_cast<long>(f), n - 2 < 0 ? 0L : n - 2));
+        const double s = f - static_cast<double>(i);
+        return i + 1 < centre.size() ? (1.0 - s) * centre[i] + s * centre[i + 1] : centre[i];
+    };
+    Mesh out = m;
+    for (Vec3& v : out.vertices) {
+        const double b = (v[along] - t0) / cell - 0.5;  // bin coordinate of v (bin centres at integers)
+        v.z() += target(b) - own(b);
+    }
+    return out;
 }
 
 }  // namespace meshquilt::quilt
