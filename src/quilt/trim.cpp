@@ -115,23 +115,27 @@ std::vector<std::pair<double, double>> free_spans(const Mesh& m, const std::vect
     return free;
 }
 
-/// The median over cells `cell` long along axis `along` of the height spanned by thread `m`'s
-/// vertices in each (its thickness; 0 without vertices).
-double thread_thickness(const Mesh& m, int along, double cell) {
-    if (m.vertices.empty()) return 0.0;
-    const Box3 box = bounding_box(m);
-    const double t0 = box.min[along];
-    const long n = static_cast<long>(std::ceil((box.max[along] - t0) / cell)) + 1;
+/// The lowest and highest heights of thread `m`'s vertices in each of `n` cells `cell` long from
+/// `t0` along axis `along` (vertices beyond the ends count in the end cells; an empty cell has
+/// lo = inf, hi = -inf).
+void cell_heights(const Mesh& m, int along, double t0, double cell, long n, std::vector<double>* lo, std::vector<double>* hi) {
     const double inf = std::numeric_limits<double>::infinity();
-    std::vector<double> lo(static_cast<std::size_t>(n), inf), hi(lo.size(), -inf);
+    lo->assign(static_cast<std::size_t>(n), inf);
+    hi->assign(static_cast<std::size_t>(n), -inf);
     for (const Vec3& v : m.vertices) {
         const auto i = static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor((v[along] - t0) / cell)), 0L, n - 1));
-        lo[i] = std::min(lo[i], v.z());
-        hi[i] = std::max(hi[i], v.z());
+        (*lo)[i] = std::min((*lo)[i], v.z());
+        (*hi)[i] = std::max((*hi)[i], v.z());
     }
+}
+
+/// The median over the cells that hold vertices of the height spanned in each (a thread's
+/// thickness; cell_heights).
+double median_thickness(const std::vector<double>& lo, const std::vector<double>& hi) {
     std::vector<double> t;
     for (std::size_t i = 0; i < lo.size(); ++i)
-        if (hi[i] > -inf) t.push_back(hi[i] - lo[i]);
+        if (hi[i] >= lo[i]) t.push_back(hi[i] - lo[i]);
+    if (t.empty()) return 0.0;
     std::nth_element(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(t.size() / 2), t.end());
     return t[t.size() / 2];
 }
@@ -226,15 +230,11 @@ Mesh woven(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, d
     const double t0 = box.min[along];
     const long n = static_cast<long>(std::ceil((box.max[along] - t0) / cell)) + 1;
     const double inf = std::numeric_limits<double>::infinity();
-    std::vector<double> lo(static_cast<std::size_t>(n), inf), hi(lo.size(), -inf);
-    for (const Vec3& v : m.vertices) {
-        const auto i = static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor((v[along] - t0) / cell)), 0L, n - 1));
-        lo[i] = std::min(lo[i], v.z());
-        hi[i] = std::max(hi[i], v.z());
-    }
+    std::vector<double> lo, hi;
+    cell_heights(m, along, t0, cell, n, &lo, &hi);
     // Knots: (cell at the middle of a crossing run, target centre height), the thread's
     // height its median thickness across the cells.
-    const double thick = thread_thickness(m, along, cell);
+    const double thick = median_thickness(lo, hi);
     std::vector<std::pair<double, double>> knots;
     for (const CrossingRun& r : crossing_runs(along, u, width, t0, cell, n, crossing)) knots.emplace_back(r.at, pass(r, thick, zmin, zmax));
     if (knots.empty()) return m;
