@@ -1009,8 +1009,8 @@ std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const 
         const Prepared& e = impl_->entries[static_cast<std::size_t>(id)]->geometry;
         if (e.tree.empty() || !overlap(q.c.box, e.box)) continue;
         auto mark = [&](int i, int j) {
-            if (prims_intersect(q.c.prims[static_cast<std::size_t>(i)], e.prims[static_cast<std::size_t>(j)]))
-                hit[static_cast<std::size_t>(q.faces[static_cast<std::size_t>(i)])] = 1;
+            char& h = hit[static_cast<std::size_t>(q.faces[static_cast<std::size_t>(i)])];
+            if (!h && prims_intersect(q.c.prims[static_cast<std::size_t>(i)], e.prims[static_cast<std::size_t>(j)])) h = 1;
             return false;
         };
         traverse_from(q.c.tree, e.tree, false, {0, 0}, mark, stack);

@@ -66,6 +66,9 @@ constexpr double kMendEmpty = 0.6;
 constexpr double kMendMinSize = 0.75;
 /// Mending passes at most (each over the faces near the rings the last one added).
 constexpr int kMendPasses = 6;
+/// Thread mending passes at most (mend_threads; on the eight at scale 0.2 a second pass added 3
+/// threads to the first's 23, for as much time).
+constexpr int kThreadMendPasses = 1;
 // A new thread that collides is cut kTrimMargin of its width clear of what it meets; pieces
 // shorter than kTrimMinLength widths are dropped (a thread is more than 3 times longer than wide).
 constexpr double kTrimMargin = 0.1;
@@ -221,6 +224,13 @@ public:
             mend_rings();
         }
         stage_seconds_["mending"] += seconds_since(t0);
+        t0 = Clock::now();
+        if (!thread_sets_[0].ids.empty() || !thread_sets_[1].ids.empty()) {
+            const int before = surface_.threads_filled;
+            mend_threads();
+            surface_.threads_mended = surface_.threads_filled - before;
+        }
+        stage_seconds_["thread gaps"] += seconds_since(t0);
         SurfaceQuiltResult result;
         finish(result);
         return result;
@@ -1579,13 +1589,36 @@ private:
         // rings the last pass added, until one adds none (at most kMendPasses; on the eight at scale
         // 0.2 the first pass added 90 rings, the next four 32, 18, 9 and 19).
         const double R = 0.5 * std::hypot(sx_, sy_) * cell_;
-        const int shrunk = surface_.patches_shrunk;  // frames are no patches
         mend_failed_.clear();
         mend_failed_grid_.clear();
         mend_cell_ = std::max(spacing * scale_ * *std::max_element(local_scale_.begin(), local_scale_.end()), 1e-12);
+        tile_frames(R, kMendPasses, "mending", [&](const Frame& fr) { mend_frame(fr.flat, fr.local, R, spacing, centre, lattice); });
+    }
+
+    /// Beyond the paper: weave gaps left after the last patch. A thread laid into a gap right after
+    /// a patch (fill_threads_patch) must stay on that patch's footprint, so a gap across a
+    /// footprint's edge gets at most a short piece, and later patches cut threads again; so after
+    /// the last patch, frames tile the surface (tile_frames) and each fills the gaps on its core
+    /// (the square of side 2R about its origin) as a patch fills its footprint.
+    void mend_threads() {
+        const double R = 0.5 * std::hypot(sx_, sy_) * cell_;
+        tile_frames(R, kThreadMendPasses, "thread mending", [&](const Frame& fr) {
+            const quilt::PatchLocator locator(fr.flat);
+            fill_threads_patch(fr.flat, locator, height_scale(fr.local), fr.local, -R, -R, R, R);
+        });
+    }
+
+    /// Frames that tile the surface after the last patch (mend_rings, mend_threads): each is grown
+    /// and flattened at the first face no frame has covered yet, covers the faces within `R` of its
+    /// origin, and is handed to `mend` (with face_slot_ set). An element added in one frame can open
+    /// room in a frame already done, so passes repeat over the faces near the elements the last pass
+    /// added, until one adds none (at most `passes`). `stage` names the progress.
+    template <class Mend>
+    void tile_frames(double R, int passes, const char* stage, const Mend& mend) {
+        const int shrunk = surface_.patches_shrunk;  // frames are no patches
         const std::size_t F = base_.mesh.faces.size();
         std::vector<char> pending(F, 1);  // faces whose frames may find new slots
-        for (int pass = 0; pass < kMendPasses; ++pass) {
+        for (int pass = 0; pass < passes; ++pass) {
             const std::size_t first_new = elems_.size();
             std::vector<char> visited(F, 0);
             std::size_t todo = 0, done = 0;
@@ -1611,12 +1644,12 @@ private:
                         visited[f] = 1;
                     }
                 }
-                mend_frame(flat, fr.local, R, spacing, centre, lattice);
+                mend(fr);
                 for (int f : flat.faces) face_slot_[static_cast<std::size_t>(f)] = -1;
-                opt_.reporter.report("mending", (pass + static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(todo, 1))) / kMendPasses);
+                opt_.reporter.report(stage, (pass + static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(todo, 1))) / passes);
             }
             if (elems_.size() == first_new) break;
-            // Next pass: the faces within two frame cores of a ring added in this one.
+            // Next pass: the faces within two frame cores of an element added in this one.
             pending.assign(F, 0);
             std::vector<int> queue;
             for (std::size_t id = first_new; id < elems_.size(); ++id) {
