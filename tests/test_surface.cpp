@@ -191,6 +191,24 @@ void expect_element_sizes(const SurfaceRun& run, double factor) {
     EXPECT_EQ(bad, 0) << first;
 }
 
+/// No element is torn: none of its faces is larger than `factor` times the swatch's largest face
+/// (at the output's scale). An element whose embedding pulled part of it elsewhere (an old
+/// thread's part beyond a patch joined to a part the patch's map puts elsewhere) shows a fan of
+/// faces 5-10 times that (docs/surface.md, step 7).
+void expect_no_torn_faces(const SurfaceRun& run, double factor) {
+    const auto& r = run.r;
+    double largest = 0.0;
+    for (std::size_t f = 0; f < run.swatch.faces.size(); ++f) largest = std::max(largest, face_area(run.swatch, f));
+    const double limit = factor * largest * r.surface.base_scale * r.surface.base_scale;
+    int bad = 0;
+    std::string first;
+    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f)
+        if (face_area(r.mesh, f) > limit && bad++ == 0)
+            first = "a face of element " + std::to_string(r.element_of_face[f]) + " has " + std::to_string(face_area(r.mesh, f) / limit * factor) +
+                    " times the swatch's largest face area";
+    EXPECT_EQ(bad, 0) << first;
+}
+
 /// Principal direction (largest spread) of an element's vertices, projected onto the plane with
 /// normal n.
 Vec3 principal_direction(const Mesh& m, const Vec3& n) {
@@ -244,6 +262,7 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     const Mesh swatch = mq::read_mesh(swatch_path(c.swatch));
     const SurfaceRun run = quilt(c.make(), swatch, c.scale);
     expect_whole_and_disjoint(run);
+    expect_no_torn_faces(run, 4.0);
     if (c.sizes) {
         expect_element_sizes(run, 1.5);
     } else {

@@ -89,6 +89,7 @@ struct SurfaceQualityReport {
     int thread_pieces = 0;         ///< pieces of trimmed threads that went in
     int threads_cut_at_patch = 0;  ///< new threads reaching off their patch whose parts on it were placed (pieces)
     int threads_filled = 0;        ///< threads laid into gaps where a direction's threads were missing (weave seams), whole or in pieces
+    int threads_torn = 0;          ///< threads whose embedding stretched faces into a fan: cut clear of them (new) or refused (old)
     int threads_mended = 0;        ///< of those, laid after the last patch (gaps left or opened by later patches)
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)

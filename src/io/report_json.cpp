@@ -103,6 +103,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"thread_pieces", s.thread_pieces},
                         {"threads_filled", s.threads_filled},
                         {"threads_mended", s.threads_mended},
+                        {"threads_torn", s.threads_torn},
                         {"threads_cut_at_patch", s.threads_cut_at_patch},
                         {"elements_folded", s.elements_folded},
                         {"elements_nudged", s.elements_nudged},
