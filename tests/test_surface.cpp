@@ -276,7 +276,9 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
         // Gaps left between threads running one way got a thread laid along them, right after
         // their patch and (gaps across a footprint's edge, or opened by later patches) after the last.
         EXPECT_GT(run.r.surface.threads_filled, 0);
-        EXPECT_GT(run.r.surface.threads_mended, 0);
+        // On a developable base (the tube) the patches' lattices agree and their own filling may
+        // leave nothing to mend; on a doubly curved one it does not.
+        if (c.name != "tube_weave") EXPECT_GT(run.r.surface.threads_mended, 0);
         EXPECT_GE(run.r.surface.threads_filled, run.r.surface.threads_mended);
     }
     // Joints wider than the swatch's are closed on a paving only (cobbles' joints are a tenth of

@@ -1393,14 +1393,17 @@ private:
             Mesh embedded;
             if (part.faces.empty() || !embed(part, source, true, &anchors, &embedded, &resize)) resize = 1.0;
         }
+        // The thread's width in the frame: where the map magnifies (a small dome such as spot's horns,
+        // resize < 1) the thread is narrower there, and so are the runs it needs.
+        const double width = resize * ts.width;
         std::vector<std::pair<double, Mesh>> tries;  // frame free run, thread
         for (int line = 0; line < kThreadLines; ++line)
             for (int k = 0; k < kThreadShifts; ++k) {
                 Mesh m = shifted(k, (line - kThreadLines / 2) * ts.spacing / 8.0);
                 for (Vec3& v : m.vertices) v = Vec3(c.x() + resize * (v.x() - c.x()), c.y() + resize * (v.y() - c.y()), v.z());
-                Mesh w = quilt::woven(m, along, crossing, resize * ts.width, sw_.box.min.z(), sw_.box.max.z());
-                const double run = free_run(w, along, crossing, ts.width);
-                if (run >= kThreadFreeRun * kTrimMinLength * ts.width) tries.emplace_back(run, std::move(w));
+                Mesh w = quilt::woven(m, along, crossing, width, sw_.box.min.z(), sw_.box.max.z());
+                const double run = free_run(w, along, crossing, width);
+                if (run >= kThreadFreeRun * kTrimMinLength * width) tries.emplace_back(run, std::move(w));
             }
         // Embedding and testing a try costs more than all else: only the kThreadShiftsEmbedded
         // with the longest free run in the frame are.
@@ -1418,10 +1421,10 @@ private:
             if (part.faces.empty() || !embed(part, source, false, &anchors, &embedded, nullptr)) continue;
             const std::vector<char> hit = collider_.colliding_faces(embedded);
             for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = hit[f];
-            const double margin = kTrimMargin * ts.width;
+            const double margin = kTrimMargin * width;
             // Most tries meet crossing threads all along: no piece long enough (checked before the
             // dearer test for folds, which only adds flags).
-            if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * ts.width) continue;
+            if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * width) continue;
             if (count_self_intersections(embedded, 1) > 0) {
                 const std::vector<char> folded = self_intersecting_faces(embedded);
                 for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = static_cast<char>(bad[kept[f]] | folded[f]);
