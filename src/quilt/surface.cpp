@@ -69,6 +69,9 @@ constexpr int kMendPasses = 6;
 /// Thread mending passes at most (mend_threads; on the eight at scale 0.2 a second pass added 3
 /// threads to the first's 23, for as much time).
 constexpr int kThreadMendPasses = 1;
+/// ... then, where a mending frame's map distorted area by more than kMaxDistortion, frames of this
+/// share of the size tile that ground once more.
+constexpr double kThreadMendSmall = 0.35;
 // A new thread that collides is cut kTrimMargin of its width clear of what it meets; pieces
 // shorter than kTrimMinLength widths are dropped (a thread is more than 3 times longer than wide).
 constexpr double kTrimMargin = 0.1;
@@ -520,10 +523,14 @@ private:
     bool make_frame(int seed, Frame* frame) {
         const double local = local_scale_[static_cast<std::size_t>(seed)];
         const double diag = std::hypot(sx_ * cell_, sy_ * cell_) * scale_ * local;
-        const double min_radius = std::min(1.25 * diag, 1.2 * element_diag_ * scale_ * local);
+        double min_radius = std::min(1.25 * diag, 1.2 * element_diag_ * scale_ * local);
         // Seeds move along the synthesis front, so the radius that passed last time is a good start
         // (each try costs a disc and an LSCM solve); it may grow back by 1.3 per patch.
-        const double max_radius = 1.25 * diag;
+        double max_radius = 1.25 * diag;
+        if (frame_cap_ > 0.0) {
+            max_radius *= frame_cap_;
+            min_radius = std::min(min_radius, max_radius);
+        }
         double radius = last_radius_ > 0 ? std::clamp(1.3 * last_radius_ * local, min_radius, max_radius) : max_radius;
         quilt::FlatPatch flat;
         bool ok = false;
@@ -1642,25 +1649,44 @@ private:
     /// a patch (fill_threads_patch) must stay on that patch's footprint, so a gap across a
     /// footprint's edge gets at most a short piece, and later patches cut threads again; so after
     /// the last patch, frames tile the surface (tile_frames) and each fills the gaps on its core
-    /// (the square of side 2R about its origin) as a patch fills its footprint.
+    /// (the square of side 2R about its origin) as a patch fills its footprint. Where a frame's map
+    /// distorts area by more than kMaxDistortion, smaller frames (kThreadMendSmall) follow.
     void mend_threads() {
         const double R = 0.5 * std::hypot(sx_, sy_) * cell_;
+        std::vector<char> distorted(base_.mesh.faces.size(), 0);
         tile_frames(R, kThreadMendPasses, "thread mending", [&](const Frame& fr) {
             const quilt::PatchLocator locator(fr.flat);
             fill_threads_patch(fr.flat, locator, height_scale(fr.local), fr.local, -R, -R, R, R);
+            if (quilt::area_distortion(base_.mesh, fr.flat) > kMaxDistortion)
+                for (int f : fr.flat.faces) distorted[static_cast<std::size_t>(f)] = 1;
         });
+        // Where a frame's map distorts area (a small dome, such as spot's horns, magnified against
+        // the ground around it), a thread's piece there is stretched beyond what stretched_faces
+        // lets through: smaller frames, tiling only that ground, flatten it with less distortion.
+        if (std::none_of(distorted.begin(), distorted.end(), [](char d) { return d != 0; })) return;
+        const double r = kThreadMendSmall * R;
+        frame_cap_ = kThreadMendSmall;
+        const double last = last_radius_;
+        last_radius_ = 0.0;
+        tile_frames(r, 1, "thread mending", [&](const Frame& fr) {
+            const quilt::PatchLocator locator(fr.flat);
+            fill_threads_patch(fr.flat, locator, height_scale(fr.local), fr.local, -r, -r, r, r);
+        }, &distorted);
+        frame_cap_ = 0.0;
+        last_radius_ = last;
     }
 
     /// Frames that tile the surface after the last patch (mend_rings, mend_threads): each is grown
     /// and flattened at the first face no frame has covered yet, covers the faces within `R` of its
     /// origin, and is handed to `mend` (with face_slot_ set). An element added in one frame can open
     /// room in a frame already done, so passes repeat over the faces near the elements the last pass
-    /// added, until one adds none (at most `passes`). `stage` names the progress.
+    /// added, until one adds none (at most `passes`). `stage` names the progress. With `only`, the
+    /// first pass starts frames on the faces it flags only.
     template <class Mend>
-    void tile_frames(double R, int passes, const char* stage, const Mend& mend) {
+    void tile_frames(double R, int passes, const char* stage, const Mend& mend, const std::vector<char>* only = nullptr) {
         const int shrunk = surface_.patches_shrunk;  // frames are no patches
         const std::size_t F = base_.mesh.faces.size();
-        std::vector<char> pending(F, 1);  // faces whose frames may find new slots
+        std::vector<char> pending = only ? *only : std::vector<char>(F, 1);  // faces whose frames may find new slots
         for (int pass = 0; pass < passes; ++pass) {
             const std::size_t first_new = elems_.size();
             std::vector<char> visited(F, 0);
@@ -2331,6 +2357,9 @@ private:
         surface_.region_density_max = counted ? hi : 0.0;
     }
 
+    /// make_frame's largest disc as a share of a patch's (0: a patch's); set by mend_threads for
+    /// its smaller frames.
+    double frame_cap_ = 0.0;
     SurfaceQuiltOptions opt_;
     quilt::SwatchData sw_;
     TriangleIndex index_;
