@@ -458,8 +458,8 @@ TEST(Surface, WeaveCoversASmallDomeThatThePatchMapMagnifies) {
     const SurfaceRun run{swatch, mq::quilt_surface(base, swatch, o)};
     expect_whole_and_disjoint(run);
     expect_no_torn_faces(run, 4.0);
-    // Points on the dome (a 5 x 5 barycentric grid on each face whose centroid lies within 0.05 of
-    // the horn), weighted by face area: covered when an output vertex lies within 0.012.
+    // Points on the dome (15 inner points of a barycentric grid on each face whose centroid lies
+    // within 0.05 of the horn), weighted by face area: covered when an output vertex lies within 0.012.
     const double reach = 0.012;
     std::map<std::array<long, 3>, std::vector<Vec3>> grid;
     auto key = [&](const Vec3& p) {
