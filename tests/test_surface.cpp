@@ -435,21 +435,11 @@ TEST(Surface, WeaveCoversASmallDomeThatThePatchMapMagnifies) {
     auto centroid = [](const Mesh& m, std::size_t f) {
         return (m.vertices[m.faces[f][0]] + m.vertices[m.faces[f][1]] + m.vertices[m.faces[f][2]]) / 3.0;
     };
-    Mesh base;
-    std::vector<int> slot(spot.vertices.size(), -1);
-    for (std::size_t f = 0; f < spot.faces.size(); ++f) {
-        if ((centroid(spot, f) - head).norm() >= 0.3) continue;
-        std::array<int, 3> t{};
-        for (int k = 0; k < 3; ++k) {
-            int& id = slot[static_cast<std::size_t>(spot.faces[f][k])];
-            if (id < 0) {
-                id = static_cast<int>(base.vertices.size());
-                base.vertices.push_back(spot.vertices[static_cast<std::size_t>(spot.faces[f][k])]);
-            }
-            t[k] = id;
-        }
-        base.faces.push_back({t[0], t[1], t[2]});
-    }
+    std::vector<int> near_head(spot.faces.size(), 0);
+    for (std::size_t f = 0; f < spot.faces.size(); ++f) near_head[f] = (centroid(spot, f) - head).norm() < 0.3;
+    const auto parts = mq::test::split_elements(spot, near_head);
+    ASSERT_EQ(parts.size(), 2u);
+    const Mesh& base = parts[1];
     ASSERT_GT(base.faces.size(), 500u);
     mq::SurfaceQuiltOptions o;
     o.swatch_size = 0.207;
