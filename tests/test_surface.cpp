@@ -308,7 +308,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BaseCase{"cylinder_chainmail", [] { return shapes::open_cylinder(1.0, 2.0, 64, 32); }, "chainmail", 0.2},
                       BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22},
                       BaseCase{"cube", [] { return shapes::cube(2.0); }, "rivets", 0.25},
-                      BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2, false, true, 0.64},
+                      BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2, false, true, 0.8},
                       BaseCase{"tube_weave", [] { return mq::read_mesh(surface_data_path("tube.obj")); }, "weave", 0.2, true, false},
                       BaseCase{"torus_weave", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "weave", 0.2, true, false},
                       BaseCase{"eight_weave", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "weave", 0.2, true, false},
@@ -411,16 +411,18 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     const auto [lo, hi] = region_density(run);
     std::printf("eight chain mail: %d mended, region density %.3f - %.3f; %s\n", run.r.surface.elements_mended, lo, hi, h.c_str());
     RecordProperty("links", h);
-    // Measured at seed 1: 762 rings, 114 mended, 63 loose rings removed; 253 linked with 4, none
-    // with none; region density 0.689-0.836. Before (no turn, no mending): 667 rings, 132 linked
-    // with 4, 83 with none, 0.646-0.796 (all but the last bound fail). Issue 3 asks for 0.85.
+    // Measured at seed 1: 901 rings, 46 mended, 12 loose rings removed; 406 linked with 4, none
+    // with none; region density 0.821-0.997. With each ring resized about its own centre (before
+    // session 16: the lattice broken): 762 rings, 114 mended, 253 linked with 4, 0.689-0.836. Before
+    // lattice turning and mending (session 11): 667 rings, 132 linked with 4, 83 with none,
+    // 0.646-0.796. Issue 3 asks for 0.85.
     const auto count = static_cast<double>(rl.rings.size());
     EXPECT_GT(run.r.surface.elements_mended, 20);
     EXPECT_GT(run.r.surface.rings_unlinked_removed, 0);
-    EXPECT_GE(histogram[4], 0.3 * count) << h;
+    EXPECT_GE(histogram[4], 0.4 * count) << h;
     EXPECT_EQ(histogram[0], 0) << "a ring of the chain mail is loose; " << h;
-    EXPECT_GE(count, 700);
-    EXPECT_GE(lo, 0.64);
+    EXPECT_GE(count, 850);
+    EXPECT_GE(lo, 0.8);
 }
 
 TEST(Surface, WeaveCoversASmallDomeThatThePatchMapMagnifies) {

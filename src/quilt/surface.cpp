@@ -50,6 +50,9 @@ constexpr double kMaxDistortion = 2.0;
 /// New elements whose embedded area differs from their swatch element's (scaled) by more than this
 /// factor are rescaled.
 constexpr double kMaxSizeDrift = 1.02;
+/// ... and elements of a lattice (keeps_lattice) by more than this: their patch's frame is scaled
+/// for their size at its seed, and resizing one moves it against its neighbours.
+constexpr double kLatticeSizeDrift = 1.3;
 
 /// A bald spot is filled where the ground around it holds less than this share of the swatch's
 /// density: the 15% the surface stage allows (fill_patch; quilt/fill.h).
@@ -212,6 +215,7 @@ public:
         fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea, true);
         joints_ = quilt::prepare_joints(sw_);
         prepare_thread_sets();
+        prepare_lattice_probe();
         fill_.area_floor = fill_.smallest_blob_area;
         index_ = TriangleIndex(sw_.mesh);
         const double lx = sw_.box.max.x(), ly = sw_.box.max.y();
@@ -702,6 +706,59 @@ private:
         return s >= 0 && sw_.element_genus[static_cast<std::size_t>(s)] > 0 && !quilt::is_elongated(sw_.elements[static_cast<std::size_t>(s)]);
     }
 
+    /// Beyond the paper: elements that hold on to their neighbours where the swatch has them, the
+    /// rings of a chain mail (interlocked_) and the threads of a weave (both directions), are not
+    /// resized one by one (embed_sized). Resizing about each element's own centre, in xy only,
+    /// moved every ring against the lattice its neighbours were placed on, tilted it, and broke the
+    /// tight links of a chain mail (a ring and the one it links with are 0.12 of the spacing apart
+    /// in the swatch): of 225 lattice slots tried next to one patch's rings on the eight, every one
+    /// collided in the frame already. Their patch's frame is scaled instead (fit_lattice_scale).
+    bool keeps_lattice(int s) const {
+        if (s < 0) return false;
+        if (interlocked_ && is_ring_source(s)) return true;
+        return woven_ && quilt::is_elongated(sw_.elements[static_cast<std::size_t>(s)]);
+    }
+
+    /// Scales a lattice swatch's patch frame (keeps_lattice) so that the swatch's middle, placed at
+    /// the seed, comes out at its size on the surface: the one scale that embed_sized would give
+    /// each element there, given to the frame as a whole, so the lattice stays a lattice (an xy
+    /// scale of the frame carries disjoint elements to disjoint ones) while the map's scale still
+    /// varies over the patch (within kMaxDistortion).
+    void fit_lattice_scale(Frame* fr, double hs) const {
+        if (lattice_probe_.faces.empty() || height_scale_ > 0) return;
+        const quilt::PatchLocator probe(fr->flat);
+        std::vector<SurfacePoint> anchors;
+        if (!to_surface(lattice_probe_, fr->flat, probe, hs, &anchors)) return;
+        const double ratio = size_ratio(lattice_probe_, anchors, embed_element(anchors, lattice_probe_.faces), fr->local);
+        if (!(ratio > 0.25 && ratio < 4.0)) return;
+        const double g = std::sqrt(ratio);
+        for (Vec2& q : fr->flat.uv) q *= g;
+    }
+
+    /// The probe of fit_lattice_scale: the swatch's faces within a quarter of its smaller side of its
+    /// middle (xy), moved so that the middle is at the origin; empty for other swatches.
+    void prepare_lattice_probe() {
+        woven_ = !thread_sets_[0].ids.empty() && !thread_sets_[1].ids.empty();
+        lattice_probe_ = Mesh();
+        if (!interlocked_ && !woven_) return;
+        const Vec2 mid = 0.5 * (sw_.box.min + sw_.box.max).head<2>();
+        const double r = 0.25 * std::min(sw_.box.size().x(), sw_.box.size().y());
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
+            if (!keeps_lattice(static_cast<int>(e))) continue;
+            const Mesh& m = sw_.elements[e];
+            std::vector<char> in(m.vertices.size());
+            std::vector<Vec3> at(m.vertices.size());
+            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                in[v] = (m.vertices[v].head<2>() - mid).norm() <= r;
+                at[v] = Vec3(m.vertices[v].x() - mid.x(), m.vertices[v].y() - mid.y(), m.vertices[v].z());
+            }
+            const Mesh part = mapped_part(at, m.faces, in);
+            const int base = static_cast<int>(lattice_probe_.vertices.size());
+            lattice_probe_.vertices.insert(lattice_probe_.vertices.end(), part.vertices.begin(), part.vertices.end());
+            for (const Tri& t : part.faces) lattice_probe_.faces.push_back({t[0] + base, t[1] + base, t[2] + base});
+        }
+    }
+
     /// Thread `m` (a frame mesh) on the patch: itself when it lies wholly on it, else its parts on
     /// it, cut kTrimEdgeMargin of its width inside (quilt/trim.h) and at least kTrimMinLength widths
     /// long (`cut` set). With `within`, parts outside that rectangle (xy) are cut off too.
@@ -745,6 +802,7 @@ private:
                 for (Vec2& q : fr.flat.uv) q = Vec2(c * q.x() - s * q.y(), s * q.x() + c * q.y());
             }
         }
+        fit_lattice_scale(&fr, hs);
         const quilt::PatchLocator locator(flat);
         stage_seconds_["patches"] += seconds_since(t0);
         t0 = Clock::now();
@@ -1026,9 +1084,36 @@ private:
         return m;
     }
 
+    /// What the map does to the area of frame mesh `m` embedded (through `anchors`) as `embedded`:
+    /// the embedded area over the frame area at the scale. Where the shell was lowered the map
+    /// flattens the element (by design: the base leaves no room), and its area shrinks with its
+    /// height; widening it for that made it larger across than its neighbours. The area is then
+    /// taken with the lowering undone: a vertex over a lowered spot is put at its texture height
+    /// along the base's normal from its foot. (Unchanged where the shell keeps its full height. The
+    /// normal, not the vertex's offset from its foot scaled back up: the optimisation moves offset
+    /// corners sideways, and where the shell is nearly flat that offset is mostly sideways.)
+    double size_ratio(const Mesh& m, const std::vector<SurfacePoint>& anchors, const Mesh& embedded, double local) const {
+        const double at_scale = std::max(mesh_area(m) * scale_ * scale_ * local * local, 1e-300);
+        if (!shell_) return mesh_area(embedded) / at_scale;
+        Mesh upright = embedded;
+        bool lowered = false;
+        for (std::size_t v = 0; v < anchors.size(); ++v) {
+            const SurfacePoint& sp = anchors[v];
+            if (shell_ratio(sp) > 1.0 - 1e-9) continue;
+            lowered = true;
+            const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
+            Vec3 n = Vec3::Zero();
+            for (int k = 0; k < 3; ++k) n += sp.bary[k] * base_.normal[static_cast<std::size_t>(t[k])];
+            if (!(n.norm() > 0)) continue;
+            upright.vertices[v] = embed({sp.face, sp.bary, 0.0}) + sp.height * n.normalized();
+        }
+        return mesh_area(lowered ? upright : embedded) / at_scale;
+    }
+
     /// Embeds frame mesh `m` (to_surface, embed_element). A new element (`fresh`) goes onto the
     /// surface at its swatch element's size: where the patch's map scales area, it is rescaled about
-    /// its centre in the frame, once (see apply).
+    /// its centre in the frame, once (see apply). Not an element of a lattice (keeps_lattice): its
+    /// patch's frame was scaled for its size instead (fit_lattice_scale).
     bool embed_sized(const Mesh& m, int source, bool fresh, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs,
                      double local, const Reach* reach, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr) const {
         if (resize) *resize = 1.0;
@@ -1037,31 +1122,9 @@ private:
         if (!fresh || source < 0 || height_scale_ > 0) return true;
         // What the map did to this element's area (not what deformation did: that was the kernel's
         // choice, bounded there).
-        const double at_scale = scale_ * scale_ * local * local;
-        double ratio = mesh_area(*embedded) / std::max(mesh_area(m) * at_scale, 1e-300);
-        if (shell_) {
-            // Where the shell was lowered the map flattens the element (by design: the base leaves
-            // no room), and its area shrinks with its height; widening it for that made it larger
-            // across than its neighbours. The area is taken with the lowering undone: a vertex over
-            // a lowered spot is put at its texture height along the base's normal from its foot.
-            // (Unchanged where the shell keeps its full height. The normal, not the vertex's offset
-            // from its foot scaled back up: the optimisation moves offset corners sideways, and
-            // where the shell is nearly flat that offset is mostly sideways.)
-            Mesh upright = *embedded;
-            bool lowered = false;
-            for (std::size_t v = 0; v < anchors->size(); ++v) {
-                const SurfacePoint& sp = (*anchors)[v];
-                if (shell_ratio(sp) > 1.0 - 1e-9) continue;
-                lowered = true;
-                const Tri& t = base_.mesh.faces[static_cast<std::size_t>(sp.face)];
-                Vec3 n = Vec3::Zero();
-                for (int k = 0; k < 3; ++k) n += sp.bary[k] * base_.normal[static_cast<std::size_t>(t[k])];
-                if (!(n.norm() > 0)) continue;
-                upright.vertices[v] = embed({sp.face, sp.bary, 0.0}) + sp.height * n.normalized();
-            }
-            if (lowered) ratio = mesh_area(upright) / std::max(mesh_area(m) * at_scale, 1e-300);
-        }
-        if (ratio < kMaxSizeDrift && ratio > 1.0 / kMaxSizeDrift) return true;
+        const double ratio = size_ratio(m, *anchors, *embedded, local);
+        const double drift = keeps_lattice(source) ? kLatticeSizeDrift : kMaxSizeDrift;
+        if (ratio < drift && ratio > 1.0 / drift) return true;
         const double f = 1.0 / std::sqrt(ratio);
         const Mesh fixed = resized_in_frame(m, f);
         std::vector<SurfacePoint> a2;
@@ -1234,6 +1297,12 @@ private:
         auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize) {
             return embed(m, source, fresh, anchors, embedded, resize) && count_self_intersections(*embedded, 1) == 0;
         };
+        auto measure = [&](const Mesh& m) {  // as embed_sized would resize m, were it no lattice element
+            std::vector<SurfacePoint> anchors;
+            if (!to_surface(m, flat, locator, hs, &anchors)) return 1.0;
+            const double ratio = size_ratio(m, anchors, embed_element(anchors, m.faces), local);
+            return ratio > 0.0 && (ratio >= kMaxSizeDrift || ratio <= 1.0 / kMaxSizeDrift) ? 1.0 / std::sqrt(ratio) : 1.0;
+        };
         // Laid threads stay on the footprint: the rest of the patch is later patches' ground.
         const Box3 footprint{Vec3(fx0, fy0, 0.0), Vec3(fx1, fy1, 0.0)};
         std::array<std::deque<Mesh>, 2> laid;  // frame meshes of the threads laid here, by direction
@@ -1269,7 +1338,7 @@ private:
                 Vec2 line = c;
                 line[1 - along] = knot_line(c, along, crossing);
                 std::deque<Mesh> frames;
-                if (lay_thread(line, along, crossing, locator, footprint, embed, place, &frames)) {
+                if (lay_thread(line, along, crossing, locator, footprint, embed, place, measure, &frames)) {
                     for (Mesh& f : frames) {
                         cov.add(f);
                         laid[static_cast<std::size_t>(along)].push_back(std::move(f));
@@ -1356,10 +1425,11 @@ private:
 
     /// Lays a swatch thread running along axis `along` through frame point `c` (see
     /// fill_threads_patch); true when any of it went in (frame meshes added to `frames`).
-    /// `embed` puts a frame mesh on the surface (embed_sized), `place` also refuses one that folds.
-    template <class Embed, class Place>
+    /// `embed` puts a frame mesh on the surface (embed_sized), `place` also refuses one that folds,
+    /// `measure` gives the scale in the frame that a frame mesh needs for its size on the surface.
+    template <class Embed, class Place, class Measure>
     bool lay_thread(const Vec2& c, int along, const std::vector<const Mesh*>& crossing, const quilt::PatchLocator& locator,
-                    const Box3& footprint, const Embed& embed, const Place& place, std::deque<Mesh>* frames) {
+                    const Box3& footprint, const Embed& embed, const Place& place, const Measure& measure, std::deque<Mesh>* frames) {
         const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
         const int source = ts.ids[ts.ids.size() / 2];
         const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
@@ -1396,9 +1466,7 @@ private:
         {
             std::vector<std::size_t> kept;
             const Mesh part = on_footprint(shifted(0, 0.0), &kept);
-            std::vector<SurfacePoint> anchors;
-            Mesh embedded;
-            if (part.faces.empty() || !embed(part, source, true, &anchors, &embedded, &resize)) resize = 1.0;
+            if (!part.faces.empty()) resize = measure(part);
         }
         // The thread's width in the frame: where the map magnifies (a small dome such as spot's horns,
         // resize < 1) the thread is narrower there, and so are the runs it needs.
@@ -2382,6 +2450,8 @@ private:
     double mend_cell_ = 1.0;
     bool rings_ = false;  ///< the swatch has rings (is_ring_source): their lattices are continued and mended
     bool interlocked_ = false;  ///< ... and they interlock (chain mail): no ring may be left unlinked
+    bool woven_ = false;        ///< the swatch has threads in both directions (a weave)
+    Mesh lattice_probe_;        ///< the swatch's middle, for fit_lattice_scale (chain mail, weaves)
     double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
     std::shared_ptr<const ShellMap> shell_;
     double diagonal_ = 0.0, scale_ = 1.0, height_scale_ = 0.0, min_field_scale_ = 1.0;
