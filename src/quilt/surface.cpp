@@ -707,12 +707,13 @@ private:
     }
 
     /// Beyond the paper: elements that hold on to their neighbours where the swatch has them, the
-    /// rings of a chain mail (interlocked_) and the threads of a weave (both directions), are not
-    /// resized one by one (embed_sized). Resizing about each element's own centre, in xy only,
-    /// moved every ring against the lattice its neighbours were placed on, tilted it, and broke the
-    /// tight links of a chain mail (a ring and the one it links with are 0.12 of the spacing apart
-    /// in the swatch): of 225 lattice slots tried next to one patch's rings on the eight, every one
-    /// collided in the frame already. Their patch's frame is scaled instead (fit_lattice_scale).
+    /// rings of a chain mail (interlocked_) and the threads of a weave (both directions), are
+    /// resized one by one (embed_sized) only beyond kLatticeSizeDrift. Resizing about each
+    /// element's own centre, in xy only, moved every ring against the lattice its neighbours were
+    /// placed on, tilted it, and broke the tight links of a chain mail (a ring and the one it links
+    /// with are 0.12 of the spacing apart in the swatch): of 225 lattice slots tried next to one
+    /// patch's rings on the eight, every one collided, nearly all in the frame already. Their
+    /// patch's frame is scaled instead (fit_lattice_scale).
     bool keeps_lattice(int s) const {
         if (s < 0) return false;
         if (interlocked_ && is_ring_source(s)) return true;
@@ -1112,8 +1113,8 @@ private:
 
     /// Embeds frame mesh `m` (to_surface, embed_element). A new element (`fresh`) goes onto the
     /// surface at its swatch element's size: where the patch's map scales area, it is rescaled about
-    /// its centre in the frame, once (see apply). Not an element of a lattice (keeps_lattice): its
-    /// patch's frame was scaled for its size instead (fit_lattice_scale).
+    /// its centre in the frame, once (see apply). An element of a lattice (keeps_lattice) only
+    /// beyond kLatticeSizeDrift: its patch's frame was scaled for its size (fit_lattice_scale).
     bool embed_sized(const Mesh& m, int source, bool fresh, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs,
                      double local, const Reach* reach, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr) const {
         if (resize) *resize = 1.0;
