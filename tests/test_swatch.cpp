@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace mq = meshquilt;
@@ -39,4 +40,83 @@ TEST(SwatchData, KnowsRingsAndGaps) {
     for (Vec3& v : overlapping.vertices) v.z() *= 0.2;
     const auto touching = mq::quilt::prepare_swatch(shapes::concat(two, overlapping));
     EXPECT_EQ(touching.near_gap, 0.0);
+}
+
+namespace {
+std::vector<char> rings_of(const mq::quilt::SwatchData& sw) {
+    std::vector<char> ring(sw.elements.size());
+    for (std::size_t s = 0; s < ring.size(); ++s) ring[s] = sw.element_genus[s] > 0;
+    return ring;
+}
+}  // namespace
+
+// Mending continues a chain mail's lattice from any standing ring (quilt::ring_lattice): a ring on
+// the swatch's border must propose the neighbours beyond that border too, not only those back inside
+// the swatch, and every proposal must be where the lattice has a ring.
+TEST(RingLattice, ContinuesPastTheSwatchBorder) {
+    const auto sw = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path("chainmail")));
+    const auto lattice = mq::quilt::ring_lattice(sw, rings_of(sw));
+    const std::size_t S = sw.elements.size();
+    ASSERT_GT(lattice.spacing, 0.0);
+    ASSERT_EQ(lattice.next.size(), S);
+    // In the swatch itself, an interior ring has the most neighbours (4-in-1 mail: 2 in its row, 4
+    // it links with); rings on the border have fewer.
+    std::size_t most = 0, fewer = 0;
+    std::vector<std::size_t> own(S, 0);
+    for (std::size_t s = 0; s < S; ++s) {
+        for (std::size_t t = 0; t < S; ++t)
+            own[s] += t != s && (lattice.centre[s] - lattice.centre[t]).norm() < 1.5 * lattice.spacing;
+        most = std::max(most, own[s]);
+    }
+    EXPECT_EQ(most, 6u);
+    int shifted = 0;
+    for (std::size_t s = 0; s < S; ++s) {
+        fewer += own[s] < most;
+        // Every ring proposes as many neighbours as an interior one, each at a distinct place
+        // between one and 1.5 spacings away.
+        ASSERT_EQ(lattice.next[s].size(), most) << "ring " << s;
+        std::vector<mq::Vec2> at;
+        for (const auto& n : lattice.next[s]) {
+            ASSERT_GE(n.source, 0);
+            const mq::Vec2 c = lattice.centre[static_cast<std::size_t>(n.source)] + n.shift;
+            const double d = (c - lattice.centre[s]).norm();
+            EXPECT_GE(d, lattice.spacing * (1.0 - 1e-9));
+            EXPECT_LT(d, 1.5 * lattice.spacing);
+            for (const mq::Vec2& q : at) EXPECT_GT((q - c).norm(), 0.1 * lattice.spacing) << "ring " << s << " proposes one place twice";
+            at.push_back(c);
+            if (n.shift.norm() == 0.0) continue;
+            ++shifted;
+            // A shifted neighbour lies beyond the swatch: where no swatch ring is.
+            for (std::size_t u = 0; u < S; ++u) EXPECT_GT((lattice.centre[u] - c).norm(), 0.1 * lattice.spacing);
+        }
+        // A ring the swatch surrounds keeps its own neighbours.
+        if (own[s] == most)
+            for (const auto& n : lattice.next[s]) EXPECT_EQ(n.shift.norm(), 0.0);
+    }
+    EXPECT_GT(fewer, 0u);
+    // The shifted ones are exactly those the swatch's border lacks.
+    int lacking = 0;
+    for (std::size_t s = 0; s < S; ++s) lacking += static_cast<int>(most - own[s]);
+    EXPECT_EQ(shifted, lacking);
+}
+
+// Rings that are no translates of one another (three tori of different sizes in a row) share no
+// neighbours: each keeps those the swatch has; elements that are no rings get none.
+TEST(RingLattice, UnlikeRingsKeepTheSwatchNeighbours) {
+    Mesh row = shapes::torus(1.0, 0.2);
+    row = shapes::concat(row, shapes::translated(shapes::torus(0.9, 0.2), Vec3(2.5, 0.0, 0.0)));
+    row = shapes::concat(row, shapes::translated(shapes::torus(0.8, 0.2), Vec3(5.0, 0.0, 0.0)));
+    Mesh cube = shapes::cube(0.4);
+    for (Vec3& v : cube.vertices) v = Vec3(v.x() + 7.0, v.y(), v.z());
+    const auto sw = mq::quilt::prepare_swatch(shapes::concat(row, cube));
+    ASSERT_EQ(sw.elements.size(), 4u);
+    const auto lattice = mq::quilt::ring_lattice(sw, rings_of(sw));
+    ASSERT_NEAR(lattice.spacing, 2.5, 1e-6);
+    std::size_t total = 0;
+    for (std::size_t s = 0; s < sw.elements.size(); ++s) {
+        if (sw.element_genus[s] == 0) EXPECT_TRUE(lattice.next[s].empty());
+        for (const auto& n : lattice.next[s]) EXPECT_EQ(n.shift.norm(), 0.0);
+        total += lattice.next[s].size();
+    }
+    EXPECT_EQ(total, 4u);  // the middle ring's two neighbours, and each end ring's one
 }

@@ -1673,7 +1673,9 @@ private:
     /// parallel, so the lattices of neighbouring patches meet at small angles, and interlocked rings
     /// that the kernel put where they collide are left out (docs/surface.md: chain mail came out at
     /// 0.6-0.8 of the swatch's density on the eight). After the last patch, each empty lattice slot
-    /// next to a standing ring gets the swatch ring that the swatch has there: the ring's pose in a
+    /// next to a standing ring gets the swatch ring that the swatch has there, or past the swatch's
+    /// border one of the right kind shifted there (quilt::ring_lattice; a ring from the border of
+    /// its patch's swatch proposed only the slots back inside it before): the ring's pose in a
     /// local frame (a similarity fitted to its swatch element's vertices) carries each of its swatch
     /// neighbours into the frame, and a slot whose centre no element occupies takes the first of a few
     /// small turns about its centre that lies on the frame's patch, collides with nothing and does not
@@ -1681,27 +1683,11 @@ private:
     /// its neighbours there. Done last, so no patch's lattice is moved by it (a filler run after each
     /// patch put 300 rings into holes, and later patches then placed 300 fewer).
     void mend_rings() {
-        const std::size_t S = sw_.elements.size();
-        std::vector<Vec2> centre(S);
-        for (std::size_t s = 0; s < S; ++s) centre[s] = area_centroid(sw_.elements[s]).head<2>();
-        // A ring's lattice neighbours in the swatch: rings within 1.5 times the median distance from
-        // a ring to its nearest one.
-        std::vector<double> nearest;
-        for (std::size_t s = 0; s < S; ++s) {
-            if (!is_ring_source(static_cast<int>(s))) continue;
-            double d = std::numeric_limits<double>::infinity();
-            for (std::size_t t = 0; t < S; ++t)
-                if (t != s && is_ring_source(static_cast<int>(t))) d = std::min(d, (centre[s] - centre[t]).norm());
-            if (std::isfinite(d)) nearest.push_back(d);
-        }
-        if (nearest.size() < 2) return;
-        std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
-        const double spacing = nearest[nearest.size() / 2];
-        std::vector<std::vector<int>> lattice(S);
-        for (std::size_t s = 0; s < S; ++s)
-            for (std::size_t t = 0; t < S && is_ring_source(static_cast<int>(s)); ++t)
-                if (t != s && is_ring_source(static_cast<int>(t)) && (centre[s] - centre[t]).norm() < 1.5 * spacing)
-                    lattice[s].push_back(static_cast<int>(t));
+        std::vector<char> is_ring(sw_.elements.size(), 0);
+        for (std::size_t s = 0; s < is_ring.size(); ++s) is_ring[s] = is_ring_source(static_cast<int>(s));
+        const quilt::RingLattice lattice = quilt::ring_lattice(sw_, is_ring);
+        if (lattice.spacing <= 0.0) return;
+        const double spacing = lattice.spacing;
         // Frames tile the surface: each mends the slots within R of its seed and marks the faces
         // there as done; the next frame starts at the first face not done. A ring mended in one
         // frame can open slots in a frame already done, so passes repeat over the faces near the
@@ -1711,7 +1697,7 @@ private:
         mend_failed_.clear();
         mend_failed_grid_.clear();
         mend_cell_ = std::max(spacing * scale_ * *std::max_element(local_scale_.begin(), local_scale_.end()), 1e-12);
-        tile_frames(R, kMendPasses, "mending", [&](const Frame& fr) { mend_frame(fr.flat, fr.local, R, spacing, centre, lattice); });
+        tile_frames(R, kMendPasses, "mending", [&](const Frame& fr) { mend_frame(fr.flat, fr.local, R, lattice); });
     }
 
     /// Beyond the paper: weave gaps left after the last patch. A thread laid into a gap right after
@@ -1808,10 +1794,11 @@ private:
         surface_.patches_shrunk = shrunk;
     }
 
-    /// One frame of mend_rings: slots within `R` of the frame's origin, `spacing` the swatch's ring
-    /// spacing, `centre[s]` swatch element s's centre, `lattice[s]` its neighbouring rings.
-    void mend_frame(const quilt::FlatPatch& flat, double local, double R, double spacing, const std::vector<Vec2>& centre,
-                    const std::vector<std::vector<int>>& lattice) {
+    /// One frame of mend_rings: slots within `R` of the frame's origin, proposed by the standing
+    /// rings' poses from the swatch's ring lattice (quilt::ring_lattice).
+    void mend_frame(const quilt::FlatPatch& flat, double local, double R, const quilt::RingLattice& lattice) {
+        const double spacing = lattice.spacing;
+        const std::vector<Vec2>& centre = lattice.centre;
         const quilt::PatchLocator locator(flat);
         const double hs = height_scale(local);
         std::vector<Pose> poses;   // rings that still have their swatch element's shape (within a tenth of the spacing)
@@ -1838,8 +1825,9 @@ private:
             const Pose pose = poses[k];
             const double unit = spacing * std::sqrt(std::fabs(pose.A.determinant()));
             const double angle = std::atan2(pose.A(1, 0), pose.A(0, 0));
-            for (int j : lattice[static_cast<std::size_t>(pose.source)]) {
-                const Vec2 c = pose.A * centre[static_cast<std::size_t>(j)] + pose.t;
+            for (const quilt::RingLattice::Neighbour& next : lattice.next[static_cast<std::size_t>(pose.source)]) {
+                const int j = next.source;
+                const Vec2 c = pose.A * (centre[static_cast<std::size_t>(j)] + next.shift) + pose.t;
                 if (c.norm() > R) continue;
                 // A slot is empty when no element's centre lies within 0.6 of the spacing (at 0.5-0.6,
                 // 3 of 273 tries fitted on the eight: the neighbouring lattice's ring is there).
@@ -1854,7 +1842,7 @@ private:
                 for (std::size_t i = 0; i < filled.size(); ++i)
                     if ((filled[i] - c).norm() < 1.6 * unit && is_ring_source(elems_[static_cast<std::size_t>(filled_id[i])].source)) around.push_back(filled_id[i]);
                 bool lasting = true;
-                if (Pose placed; mend_slot(flat, locator, hs, local, pose, j, c, around, &anchors, &embedded, &placed, &lasting)) {
+                if (Pose placed; mend_slot(flat, locator, hs, local, pose, j, next.shift, c, around, &anchors, &embedded, &placed, &lasting)) {
                     filled.push_back(c);
                     filled_id.push_back(static_cast<int>(elems_.size()) - 1);
                     poses.push_back(placed);
@@ -1905,13 +1893,13 @@ private:
         return false;
     }
 
-    /// Tries swatch ring `j` where `pose` puts it (centre `c` in the frame): as it is, turned by up to
-    /// 6 degrees either way about c, then shrunk to 0.92 and 0.85 of its size (a ring between two
-    /// lattices that meet at an angle often fits only a little smaller; each shrink of the 38 rings
-    /// mended on the eight, 15 were smaller). The first pose that lies on the patch, collides with
-    /// nothing and does not fold is added.
+    /// Tries swatch ring `j`, shifted by `shift` in the swatch, where `pose` puts it (centre `c` in
+    /// the frame): as it is, turned by up to 6 degrees either way about c, then shrunk to 0.92 and
+    /// 0.85 of its size (a ring between two lattices that meet at an angle often fits only a little
+    /// smaller; each shrink of the 38 rings mended on the eight, 15 were smaller). The first pose
+    /// that lies on the patch, collides with nothing and does not fold is added.
     bool mend_slot(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, const Pose& pose, int j,
-                   const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed,
+                   const Vec2& shift, const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed,
                    bool* lasting) {
         *lasting = true;  // every pose collided or folded: more rings will not change that
         const Mesh& src = sw_.elements[static_cast<std::size_t>(j)];
@@ -1923,7 +1911,7 @@ private:
                 T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
                 Mesh m = src;
                 for (Vec3& v : m.vertices) {
-                    const Vec2 q = T * (pose.A * v.head<2>() + pose.t - c) + c;
+                    const Vec2 q = T * (pose.A * (v.head<2>() + shift) + pose.t - c) + c;
                     v = Vec3(q.x(), q.y(), v.z());
                 }
                 if (fit == 0.0) {
@@ -1948,7 +1936,7 @@ private:
                 add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
                 ++surface_.elements_mended;
                 // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
-                *placed = {j, T * pose.A, T * (pose.t - c) + c, 0.0};
+                *placed = {j, T * pose.A, T * (pose.A * shift + pose.t - c) + c, 0.0};
                 return true;
             }
         return false;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 namespace meshquilt::quilt {
@@ -166,6 +167,70 @@ std::vector<char> intersecting_to_remove(const std::vector<const Mesh*>& element
         drop[elements[ia]->faces.size() < elements[ib]->faces.size() ? ia : ib] = 1;
     }
     return drop;
+}
+
+RingLattice ring_lattice(const SwatchData& swatch, const std::vector<char>& is_ring) {
+    const std::size_t S = swatch.elements.size();
+    RingLattice lattice;
+    lattice.centre.resize(S);
+    lattice.next.resize(S);
+    for (std::size_t s = 0; s < S; ++s) lattice.centre[s] = area_centroid(swatch.elements[s]).head<2>();
+    const std::vector<Vec2>& centre = lattice.centre;
+    auto ring = [&](std::size_t s) { return s < is_ring.size() && is_ring[s]; };
+    std::vector<double> nearest;
+    for (std::size_t s = 0; s < S; ++s) {
+        if (!ring(s)) continue;
+        double d = std::numeric_limits<double>::infinity();
+        for (std::size_t t = 0; t < S; ++t)
+            if (t != s && ring(t)) d = std::min(d, (centre[s] - centre[t]).norm());
+        if (std::isfinite(d)) nearest.push_back(d);
+    }
+    if (nearest.size() < 2) return lattice;
+    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
+    lattice.spacing = nearest[nearest.size() / 2];
+    const double tol = 1e-3 * lattice.spacing;
+    // Kinds: rings that are translates of one another in the plane.
+    std::vector<int> kind(S, -1);
+    std::vector<std::size_t> first_of_kind;
+    for (std::size_t s = 0; s < S; ++s) {
+        if (!ring(s)) continue;
+        const Mesh& a = swatch.elements[s];
+        for (std::size_t k = 0; k < first_of_kind.size() && kind[s] < 0; ++k) {
+            const Mesh& b = swatch.elements[first_of_kind[k]];
+            if (a.vertices.size() != b.vertices.size() || a.faces != b.faces) continue;
+            const Vec3 d = a.vertices.front() - b.vertices.front();
+            bool same = std::fabs(d.z()) <= tol;
+            for (std::size_t v = 0; v < a.vertices.size() && same; ++v) same = (a.vertices[v] - b.vertices[v] - d).norm() <= tol;
+            if (same) kind[s] = static_cast<int>(k);
+        }
+        if (kind[s] < 0) {
+            kind[s] = static_cast<int>(first_of_kind.size());
+            first_of_kind.push_back(s);
+        }
+    }
+    // Each kind's neighbours: (offset, a ring of the neighbour's kind), once per offset and kind.
+    std::vector<std::vector<std::pair<Vec2, std::size_t>>> offsets(first_of_kind.size());
+    for (std::size_t s = 0; s < S; ++s)
+        for (std::size_t t = 0; t < S && ring(s); ++t) {
+            if (t == s || !ring(t) || (centre[s] - centre[t]).norm() >= 1.5 * lattice.spacing) continue;
+            auto& list = offsets[static_cast<std::size_t>(kind[s])];
+            const Vec2 d = centre[t] - centre[s];
+            if (std::none_of(list.begin(), list.end(), [&](const auto& o) { return (o.first - d).norm() <= tol && kind[o.second] == kind[t]; }))
+                list.emplace_back(d, t);
+        }
+    for (std::size_t s = 0; s < S; ++s) {
+        if (!ring(s)) continue;
+        for (const auto& [d, t] : offsets[static_cast<std::size_t>(kind[s])]) {
+            // The swatch's own ring where it has one, else ring t shifted there.
+            const Vec2 want = centre[s] + d;
+            std::size_t at = S;
+            for (std::size_t u = 0; u < S && at == S; ++u)
+                if (kind[u] == kind[t] && (centre[u] - want).norm() <= tol) at = u;
+            if (at < S) lattice.next[s].push_back({static_cast<int>(at), Vec2::Zero()});
+            else lattice.next[s].push_back({static_cast<int>(t), want - centre[t]});
+        }
+    }
+    return lattice;
 }
 
 }  // namespace meshquilt::quilt

@@ -74,6 +74,26 @@ Placement place_swatch(const SwatchData& swatch, const TriangleIndex& index, con
                        const std::vector<Sample>& samples, int pi0, int pj0, int k, int sx, int sy, double cell, double tolerance,
                        std::mt19937_64& rng);
 
+/// Beyond the paper: a swatch's ring lattice, which mending continues on the surface (chain mail).
+struct RingLattice {
+    /// A ring's lattice neighbour: swatch element `source` moved by `shift` in the swatch's plane.
+    struct Neighbour {
+        int source = -1;
+        Vec2 shift = Vec2::Zero();
+    };
+    std::vector<Vec2> centre;                  ///< each element's area centroid (xy)
+    double spacing = 0.0;                      ///< median distance from a ring to its nearest ring (0: fewer than two rings)
+    std::vector<std::vector<Neighbour>> next;  ///< each ring's lattice neighbours (none for other elements)
+};
+
+/// The lattice of the elements flagged in `is_ring`: each ring's neighbours are the rings within
+/// 1.5 spacings of it. Rings that are translates of one another (the same vertices up to a shift in
+/// the plane, within a thousandth of the spacing) are of one kind and share their neighbours: a ring
+/// on the swatch's border also gets those an interior ring of its kind has beyond that border
+/// (another ring of the right kind, shifted there), so the lattice goes on past the swatch's edge.
+/// Rings of no repeated kind keep the neighbours the swatch has.
+RingLattice ring_lattice(const SwatchData& swatch, const std::vector<char>& is_ring);
+
 /// The elements to remove so that no two of `elements` intersect (exact tests): of each
 /// intersecting pair, the one with fewer faces (unless one of the pair is already removed).
 std::vector<char> intersecting_to_remove(const std::vector<const Mesh*>& elements);
