@@ -71,6 +71,8 @@ constexpr double kMendMinSize = 0.75;
 /// root of the area, a lowered shell's flattening included): the stage promises a factor 1.5
 /// (0.667), and 0.7 leaves a margin.
 constexpr double kMinElementSize = 0.7;
+/// ... and one below it is first enlarged in the frame to this share of its size.
+constexpr double kGrowBackSize = 0.85;
 /// Mending passes at most (each over the faces near the rings the last one added).
 constexpr int kMendPasses = 6;
 /// Thread mending passes at most (mend_threads; on the eight at scale 0.2 a second pass added 3
@@ -2010,6 +2012,21 @@ private:
                     if (c.folded.empty()) c.folded.assign(torn.size(), 0);
                     for (std::size_t f = 0; f < torn.size() && f < c.folded.size(); ++f) c.folded[f] = static_cast<char>(c.folded[f] | torn[f]);
                 }
+            // An element the plan shrank below kMinElementSize (a stitched or squeezed ring) goes in
+            // at kGrowBackSize of its size, if it fits so (too_small refuses it otherwise).
+            if (const int of = ch.source >= 0 || ch.old_id < 0 ? ch.source : elems_[static_cast<std::size_t>(ch.old_id)].source;
+                !thread && too_small(c.embedded, of, local) && !getenv("MQ_NOGROWBACK")) {
+                const double want = mesh_area(sw_.elements[static_cast<std::size_t>(of)]) * scale_ * scale_ * local * local;
+                const double size = std::sqrt(mesh_area(c.embedded) / want);
+                const double f = c.resize * kGrowBackSize / std::max(size, 1e-3);
+                std::vector<SurfacePoint> a2;
+                Mesh e2;
+                if (place_sized(resized_in_frame(ch.mesh, f), of, false, &a2, &e2) && !folded(e2)) {
+                    c.anchors = std::move(a2);
+                    c.embedded = std::move(e2);
+                    c.resize = f;
+                }
+            }
             if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback, &c.fallback_resize)) c.fallback = Mesh();
             pending.push_back(std::move(c));
         }
