@@ -2015,10 +2015,8 @@ private:
             // An element the plan shrank below kMinElementSize (a stitched or squeezed ring) goes in
             // at kGrowBackSize of its size, if it fits so (too_small refuses it otherwise).
             if (const int of = ch.source >= 0 || ch.old_id < 0 ? ch.source : elems_[static_cast<std::size_t>(ch.old_id)].source;
-                !thread && too_small(c.embedded, of, local) && !getenv("MQ_NOGROWBACK")) {
-                const double want = mesh_area(sw_.elements[static_cast<std::size_t>(of)]) * scale_ * scale_ * local * local;
-                const double size = std::sqrt(mesh_area(c.embedded) / want);
-                const double f = c.resize * kGrowBackSize / std::max(size, 1e-3);
+                !thread && too_small(c.embedded, of, local)) {
+                const double f = c.resize * kGrowBackSize / std::max(element_size(c.embedded, of, local), 1e-3);
                 std::vector<SurfacePoint> a2;
                 Mesh e2;
                 if (place_sized(resized_in_frame(ch.mesh, f), of, false, &a2, &e2) && !folded(e2)) {
@@ -2204,11 +2202,17 @@ private:
     /// in its hands and feet.) Threads are left out: they are cut and stitched to any length. With
     /// a user height (--height) the element's thickness is not the swatch's, nor is its area.
     bool too_small(const Mesh& embedded, int source, double local) const {
-        if (source < 0 || height_scale_ > 0) return false;
+        const double size = element_size(embedded, source, local);
+        return size >= 0.0 && size < kMinElementSize;
+    }
+    /// ... its size as a share of its swatch element's (the square root of the area ratio); -1 where
+    /// too_small does not apply.
+    double element_size(const Mesh& embedded, int source, double local) const {
+        if (source < 0 || height_scale_ > 0) return -1.0;
         const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
-        if (quilt::is_elongated(src)) return false;
+        if (quilt::is_elongated(src)) return -1.0;
         const double want = mesh_area(src) * scale_ * scale_ * local * local;
-        return want > 0.0 && std::sqrt(mesh_area(embedded) / want) < kMinElementSize;
+        return want > 0.0 ? std::sqrt(mesh_area(embedded) / want) : -1.0;
     }
 
     /// `m` scaled by `f` in xy about its area centroid (as embed_sized resizes it).
