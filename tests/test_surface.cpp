@@ -390,7 +390,9 @@ TEST(Surface, ChainMailOnACylinderStaysChainMail) {
     ASSERT_GT(interior, 50);
     RecordProperty("links", h);
     std::printf("cylinder chain mail: %s\n", h.c_str());
-    EXPECT_GE(four, 0.85 * interior) << h;  // measured: 859 of 928 (93%)
+    // Measured: 949 of 978 (97%) since session 18's warp onto the old rings; 908 of 960 (95%) before,
+    // 859 of 928 (93%) in session 11.
+    EXPECT_GE(four, 0.93 * interior) << h;
     // Rings that collided where the kernel put them were nudged into place (measured: 824 of 917
     // rings linked with 4 without nudging).
     EXPECT_GT(run.r.surface.elements_nudged, 0);
@@ -411,17 +413,18 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     const auto [lo, hi] = region_density(run);
     std::printf("eight chain mail: %d mended, region density %.3f - %.3f; %s\n", run.r.surface.elements_mended, lo, hi, h.c_str());
     RecordProperty("links", h);
-    // Measured at seed 1: 901 rings, 46 mended, 12 loose rings removed; 406 linked with 4, none
-    // with none; region density 0.821-0.997. With each ring resized about its own centre (before
+    // Measured at seed 1: 958 rings, 94 mended, 458 linked with 4, none with none; region density
+    // 0.843-1.078. Before session 18's warp of the new rings onto the old ones: 918 rings, 409 linked
+    // with 4 (0.446 of them), 0.840-1.006; before session 17: 901 rings, 406 with 4, 0.821-0.997. With each ring resized about its own centre (before
     // session 16: the lattice broken): 762 rings, 114 mended, 253 linked with 4, 0.689-0.836. Before
     // lattice turning and mending (session 11): 667 rings, 132 linked with 4, 83 with none,
     // 0.646-0.796. Issue 3 asks for 0.85.
     const auto count = static_cast<double>(rl.rings.size());
     EXPECT_GT(run.r.surface.elements_mended, 20);
     EXPECT_GT(run.r.surface.rings_unlinked_removed, 0);
-    EXPECT_GE(histogram[4], 0.4 * count) << h;
+    EXPECT_GE(histogram[4], 0.46 * count) << h;
     EXPECT_EQ(histogram[0], 0) << "a ring of the chain mail is loose; " << h;
-    EXPECT_GE(count, 850);
+    EXPECT_GE(count, 930);
     EXPECT_GE(lo, 0.8);
 }
 

@@ -73,6 +73,13 @@ constexpr double kMendMinSize = 0.75;
 constexpr double kMinElementSize = 0.7;
 /// ... and one below it is first enlarged in the frame to this share of its size.
 constexpr double kGrowBackSize = 0.85;
+/// warp_to_old_rings: an old ring pairs with a new ring of its kind within this many spacings,
+constexpr double kWarpReach = 0.5;
+/// ... turned by less than this against it (radians),
+constexpr double kWarpMaxTurn = 0.35;
+/// ... and its offset spreads with a Gaussian this many spacings wide, against this weight for staying.
+constexpr double kWarpSigma = 1.5;
+constexpr double kWarpStay = 0.05;
 /// Mending passes at most (each over the faces near the rings the last one added).
 constexpr int kMendPasses = 6;
 /// Thread mending passes at most (mend_threads; on the eight at scale 0.2 a second pass added 3
@@ -218,6 +225,7 @@ public:
         sw_ = quilt::prepare_swatch(swatch);
         for (std::size_t e = 0; e < sw_.elements.size(); ++e) rings_ = rings_ || is_ring_source(static_cast<int>(e));
         interlocked_ = rings_ && swatch_rings_interlock();
+        prepare_ring_kinds();
         fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea, true);
         joints_ = quilt::prepare_joints(sw_);
         prepare_thread_sets();
@@ -707,6 +715,100 @@ private:
         return std::fabs(best) <= M_PI / 3.0 ? best : 0.0;
     }
 
+    /// Beyond the paper: the new rings are moved onto the old lattice around them. lattice_turn
+    /// continues the old rings at the seed, but a patch is a footprint wide, and on a doubly curved
+    /// base the old lattice (from other charts) drifts against the new one away from the seed, so
+    /// interlocked rings at the patch's far side collide where they should link. Each old ring wholly
+    /// on the patch is paired with the nearest new ring of its kind (the same swatch ring up to a
+    /// lattice shift) within kWarpReach spacings; their offset and turn spread over the new rings
+    /// with Gaussian weights (kWarpSigma spacings) against a weight for staying (kWarpStay), and
+    /// each new ring is moved rigidly by its share: a smooth warp that bends the new lattice into
+    /// the old one where they meet and leaves it alone away from old rings.
+    void warp_to_old_rings(std::vector<quilt::NewElement>* fresh, const std::vector<quilt::OldElement>& old, const quilt::FlatPatch& flat,
+                           double hs) const {
+        if (!interlocked_ || ring_spacing_ <= 0.0) return;
+        struct Pin {
+            Vec2 at, offset;
+            double turn;
+        };
+        std::vector<Vec2> centre(fresh->size());
+        for (std::size_t j = 0; j < fresh->size(); ++j) centre[j] = area_centroid((*fresh)[j].mesh).head<2>();
+        std::vector<Pin> pins;
+        Pose pose;
+        for (const quilt::OldElement& o : old) {
+            const SurfElement& e = elems_[static_cast<std::size_t>(o.id)];
+            if (!is_ring_source(e.source) || !element_pose(e, flat, hs, &pose)) continue;
+            const Vec2 c = pose.A * ring_centre_[static_cast<std::size_t>(e.source)] + pose.t;
+            const int kind = ring_kind_[static_cast<std::size_t>(e.source)];
+            double best = kWarpReach * ring_spacing_;
+            int partner = -1;
+            for (std::size_t j = 0; j < fresh->size(); ++j) {
+                const int s = (*fresh)[j].source;
+                if (s < 0 || ring_kind_[static_cast<std::size_t>(s)] != kind) continue;
+                const double d = (centre[j] - c).norm();
+                if (d < best) {
+                    best = d;
+                    partner = static_cast<int>(j);
+                }
+            }
+            const double turn = std::atan2(pose.A(1, 0), pose.A(0, 0));
+            if (partner >= 0 && std::fabs(turn) < kWarpMaxTurn) pins.push_back({centre[static_cast<std::size_t>(partner)], c - centre[static_cast<std::size_t>(partner)], turn});
+        }
+        if (pins.empty()) return;
+        const double sigma2 = kWarpSigma * kWarpSigma * ring_spacing_ * ring_spacing_;
+        for (std::size_t j = 0; j < fresh->size(); ++j) {
+            quilt::NewElement& ne = (*fresh)[j];
+            if (!is_ring_source(ne.source)) continue;
+            double w = kWarpStay, turn = 0.0;
+            Vec2 offset = Vec2::Zero();
+            for (const Pin& p : pins) {
+                const double wi = std::exp(-(p.at - centre[j]).squaredNorm() / sigma2);
+                w += wi;
+                offset += wi * p.offset;
+                turn += wi * p.turn;
+            }
+            offset /= w;
+            turn /= w;
+            const double c = std::cos(turn), s = std::sin(turn);
+            for (Vec3& v : ne.mesh.vertices) {
+                const Vec2 d = v.head<2>() - centre[j];
+                v.head<2>() = centre[j] + offset + Vec2(c * d.x() - s * d.y(), s * d.x() + c * d.y());
+            }
+        }
+    }
+
+    /// Ring kinds and spacing for warp_to_old_rings: rings that are translates of one another (the
+    /// same vertices up to the shift of their centroids, within a thousandth of the spacing).
+    void prepare_ring_kinds() {
+        const std::size_t n = sw_.elements.size();
+        ring_kind_.assign(n, -1);
+        ring_centre_.assign(n, Vec2::Zero());
+        std::vector<char> is_ring(n, 0);
+        for (std::size_t s = 0; s < n; ++s) {
+            is_ring[s] = is_ring_source(static_cast<int>(s));
+            ring_centre_[s] = area_centroid(sw_.elements[s]).head<2>();
+        }
+        if (!interlocked_) return;
+        ring_spacing_ = quilt::ring_lattice(sw_, is_ring).spacing;
+        const double tol = 1e-3 * ring_spacing_;
+        for (std::size_t s = 0; s < n; ++s) {
+            if (!is_ring[s]) continue;
+            ring_kind_[s] = static_cast<int>(s);
+            for (std::size_t r = 0; r < s; ++r) {
+                if (ring_kind_[r] != static_cast<int>(r)) continue;
+                const Mesh &a = sw_.elements[s], &b = sw_.elements[r];
+                if (a.vertices.size() != b.vertices.size() || a.faces != b.faces) continue;
+                const Vec3 shift(ring_centre_[s].x() - ring_centre_[r].x(), ring_centre_[s].y() - ring_centre_[r].y(), 0.0);
+                bool same = true;
+                for (std::size_t v = 0; v < a.vertices.size() && same; ++v) same = (a.vertices[v] - b.vertices[v] - shift).norm() <= tol;
+                if (same) {
+                    ring_kind_[s] = static_cast<int>(r);
+                    break;
+                }
+            }
+        }
+    }
+
     /// Rings: closed elements of genus >= 1 that are not threads (they interlock on a lattice).
     bool is_ring_source(int s) const {
         return s >= 0 && sw_.element_genus[static_cast<std::size_t>(s)] > 0 && !quilt::is_elongated(sw_.elements[static_cast<std::size_t>(s)]);
@@ -867,6 +969,7 @@ private:
         for (const auto& o : old) add_samples(o.mesh);
         for (const auto& m : obstacles) add_samples(m);
         quilt::Placement pl = quilt::place_swatch(sw_, index_, params_.metric, samples, pi0, pj0, k_, sx_, sy_, cell_, opt_.tolerance, rng_);
+        warp_to_old_rings(&pl.fresh, old, flat, hs);
         const int ti = pl.ti, tj = pl.tj;
         stage_seconds_["matching"] += seconds_since(t0);
         t0 = Clock::now();
@@ -2481,6 +2584,9 @@ private:
     bool interlocked_ = false;  ///< ... and they interlock (chain mail): no ring may be left unlinked
     bool woven_ = false;        ///< the swatch has threads in both directions (a weave)
     Mesh lattice_probe_;        ///< the swatch's middle, for fit_lattice_scale (chain mail, weaves)
+    std::vector<int> ring_kind_;      ///< per swatch element: the first ring it is a translate of (-1: no ring)
+    std::vector<Vec2> ring_centre_;   ///< per swatch element: its area centroid (xy)
+    double ring_spacing_ = 0.0;       ///< the swatch's ring spacing (quilt::RingLattice), 0 without interlocked rings
     double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
     std::shared_ptr<const ShellMap> shell_;
     double diagonal_ = 0.0, scale_ = 1.0, height_scale_ = 0.0, min_field_scale_ = 1.0;
