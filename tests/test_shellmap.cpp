@@ -475,7 +475,7 @@ TEST(ShellMap, FlattenedElementsKeepTheirWidth) {
         std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
         return v[v.size() / 2];
     };
-    std::cerr << "comb: " << flattened.size() << " elements flattened below 60% of their height, median width " << median(flattened)
+    std::cerr << "comb: " << r.surface.elements_enlarged << " enlarged; " << flattened.size() << " elements flattened below 60% of their height, median width " << median(flattened)
               << "; " << upright.size() << " upright, median width " << median(upright) << "\n";
     EXPECT_LE(median(flattened), 1.05 * median(upright));
     EXPECT_EQ(r.surface.elements_below_base, 0);

@@ -171,7 +171,10 @@ std::pair<double, double> region_density(const SurfaceRun& run) {
 
 /// Each element's size (the square root of its area) within a factor `factor` of its swatch
 /// element's size at the scale used.
-void expect_element_sizes(const SurfaceRun& run, double factor) {
+/// ... and, with `floor` > 0, none smaller than `floor` of its swatch element's size: the stage's
+/// size floor (kMinElementSize, 0.7, in src/quilt/surface.cpp) refuses or enlarges placed elements
+/// below it. Only for runs without a field or --height (the floor then measures what this does).
+void expect_element_sizes(const SurfaceRun& run, double factor, double floor = 0.0) {
     const auto& r = run.r;
     int count = 0;
     const std::vector<int> comp = mq::connected_components(run.swatch, &count);
@@ -184,7 +187,7 @@ void expect_element_sizes(const SurfaceRun& run, double factor) {
     for (std::size_t e = 0; e < parts.size(); ++e) {
         const double want = source_area[static_cast<std::size_t>(r.source_element[e])] * s2;
         const double ratio = std::sqrt(area(parts[e]) / want);
-        if (ratio > factor || ratio < 1.0 / factor) {
+        if (ratio > factor || ratio < std::max(1.0 / factor, floor)) {
             if (bad++ == 0) first = "element " + std::to_string(e) + " has " + std::to_string(ratio) + " times its swatch element's size";
         }
     }
@@ -264,7 +267,7 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     expect_whole_and_disjoint(run);
     expect_no_torn_faces(run, 4.0);
     if (c.sizes) {
-        expect_element_sizes(run, 1.5);
+        expect_element_sizes(run, 1.5, 0.7);
     } else {
         // Threads: old ones reaching beyond a patch were handed to the kernel and stitched; new
         // ones that collided or reached off their patch were cut and their free parts kept.
@@ -405,7 +408,7 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     const Mesh swatch = mq::read_mesh(swatch_path("chainmail"));
     const SurfaceRun run = quilt(mq::read_mesh(surface_data_path("eight.obj")), swatch, 0.2);
     expect_whole_and_disjoint(run);
-    expect_element_sizes(run, 1.5);
+    expect_element_sizes(run, 1.5, 0.7);
     const RingLinks rl = ring_links(run);
     std::map<int, int> histogram;
     for (int c : rl.links) ++histogram[c];
@@ -692,6 +695,26 @@ TEST(SurfaceField, WithoutAFieldNeighboursAgreeUpToTheSwatchSymmetry) {
 
 // ---------------------------------------------------------------------------------------------
 // Bad input.
+
+// A swatch whose elements are as wide as the base's features: on a bar narrower than a ring nothing
+// fits, which is an error (no empty decoration is written); on a bar twice as wide a few rings fit,
+// which is a result with a warning that names the density reached.
+TEST(SurfaceErrors, ASwatchTooLargeForTheBaseIsAnErrorOrAWarning) {
+    const Mesh chainmail = mq::read_mesh(swatch_path("chainmail"));
+    mq::SurfaceQuiltOptions o;
+    o.swatch_size = 4.5;  // rings about 0.75 wide
+    EXPECT_TRUE(mq::test::throws_with<mq::InvalidInput>([&] { (void)mq::quilt_surface(isect::cuboid(Vec3(0, 0, 0), Vec3(0.6, 0.6, 8.0)), chainmail, o); },
+                                                        {"no element of the swatch fits", "smaller --scale or --swatch-size"}));
+    const auto r = mq::quilt_surface(isect::cuboid(Vec3(0, 0, 0), Vec3(1.2, 1.2, 8.0)), chainmail, o);
+    EXPECT_GT(r.report.elements, 0);
+    ASSERT_GT(r.surface.regions, 0);
+    EXPECT_LT(r.surface.region_density_min, 0.5);  // measured: 0.21
+    EXPECT_EQ(std::count_if(r.warnings.begin(), r.warnings.end(),
+                            [](const std::string& w) { return w.find("decoration is sparse: its thinnest region holds 0.") != std::string::npos &&
+                                                              w.find("smaller --scale") != std::string::npos; }),
+              1)
+        << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());
+}
 
 TEST(SurfaceErrors, BadBasesAndOptionsGiveClearErrors) {
     using mq::test::throws_with;

@@ -106,6 +106,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"threads_torn", s.threads_torn},
                         {"threads_cut_at_patch", s.threads_cut_at_patch},
                         {"elements_folded", s.elements_folded},
+                        {"elements_enlarged", s.elements_enlarged},
                         {"elements_nudged", s.elements_nudged},
                         {"elements_mended", s.elements_mended},
                         {"rings_unlinked_removed", s.rings_unlinked_removed},

@@ -73,6 +73,8 @@ constexpr double kMendMinSize = 0.75;
 constexpr double kMinElementSize = 0.7;
 /// ... and one below it is first enlarged in the frame to this share of its size.
 constexpr double kGrowBackSize = 0.85;
+/// Below this share of the swatch's density in some region, the result carries a warning.
+constexpr double kSparseWarning = 0.5;
 /// warp_to_old_rings: an old ring pairs with a new ring of its kind within this many spacings,
 constexpr double kWarpReach = 0.5;
 /// ... turned by less than this against it (radians),
@@ -2126,6 +2128,7 @@ private:
                     c.anchors = std::move(a2);
                     c.embedded = std::move(e2);
                     c.resize = f;
+                    ++surface_.elements_enlarged;
                 }
             }
             if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback, &c.fallback_resize)) c.fallback = Mesh();
@@ -2508,6 +2511,18 @@ private:
         surface_.swatch_density = r.swatch_density;
         for (char p : processed_) surface_.base_faces_processed += p;
         region_density(result);
+        // A swatch too large for the base's features: every placement folded, collided or fell off
+        // its patch. An empty decoration is no result; a very sparse one gets a warning.
+        const double footprint = scale_ * std::max(sw_.box.size().x(), sw_.box.size().y());
+        if (result.source_element.empty())
+            throw InvalidInput("no element of the swatch fits on the base at this scale (a swatch footprint of " + num(footprint) +
+                               " base units, the base's diagonal " + num(diagonal_) +
+                               "): every placement folded, collided or reached off its patch where the base curves more tightly than the elements are "
+                               "wide; choose a smaller --scale or --swatch-size");
+        if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning)
+            warnings_.push_back("the decoration is sparse: its thinnest region holds " + num(surface_.region_density_min) +
+                                " of the swatch's density (its largest element is " + num(element_diag_ * scale_) +
+                                " base units across; features of the base not much larger keep few); a smaller --scale or --swatch-size covers more fully");
         result.surface = surface_;
         result.warnings = warnings_;
         if (r.elements_removed > 0)
