@@ -501,7 +501,7 @@ TEST(Surface, RingsThatDoNotInterlockInTheSwatchAreKept) {
             swatch = shapes::concat(swatch, shapes::translated(shapes::torus(1.0, 0.25, 24, 12), Vec3(1.5 + 3.0 * i, 1.5 + 3.0 * j, 0.25)));
     const SurfaceRun run = quilt(isect::icosphere(1.0, 3), swatch, 0.25);
     expect_whole_and_disjoint(run);
-    expect_element_sizes(run, 1.5);
+    expect_element_sizes(run, 1.5, 0.7);
     EXPECT_EQ(run.r.surface.rings_unlinked_removed, 0);
     EXPECT_GT(run.r.surface.elements_mended, 0);
     const auto [lo, hi] = region_density(run);
