@@ -395,7 +395,7 @@ TEST(Surface, ChainMailOnACylinderStaysChainMail) {
     std::printf("cylinder chain mail: %s\n", h.c_str());
     // Measured: 949 of 978 (97%) since session 18's warp onto the old rings; 908 of 960 (95%) before,
     // 859 of 928 (93%) in session 11.
-    EXPECT_GE(four, 0.93 * interior) << h;
+    EXPECT_GE(four, 0.96 * interior) << h;
     // Rings that collided where the kernel put them were nudged into place (measured: 824 of 917
     // rings linked with 4 without nudging).
     EXPECT_GT(run.r.surface.elements_nudged, 0);
