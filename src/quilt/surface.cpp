@@ -2522,7 +2522,7 @@ private:
         if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning)
             warnings_.push_back("the decoration is sparse: its thinnest region holds " + num(surface_.region_density_min) +
                                 " of the swatch's density (its largest element is " + num(element_diag_ * scale_) +
-                                " base units across; features of the base not much larger keep few); a smaller --scale or --swatch-size covers more fully");
+                                " base units across, and few fit where the base's features are not much larger); a smaller --scale or --swatch-size covers more fully");
         result.surface = surface_;
         result.warnings = warnings_;
         if (r.elements_removed > 0)
