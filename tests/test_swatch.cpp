@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 #include <vector>
 
 namespace mq = meshquilt;
@@ -69,6 +70,10 @@ TEST(RingLattice, ContinuesPastTheSwatchBorder) {
         most = std::max(most, own[s]);
     }
     EXPECT_EQ(most, 6u);
+    // Two kinds of ring: the rows alternate their tilt, and every other row is a translate.
+    ASSERT_EQ(lattice.kind.size(), S);
+    EXPECT_EQ(std::set<int>(lattice.kind.begin(), lattice.kind.end()).size(), 2u);
+    EXPECT_EQ(std::count(lattice.kind.begin(), lattice.kind.end(), -1), 0);
     int shifted = 0;
     for (std::size_t s = 0; s < S; ++s) {
         fewer += own[s] < most;
@@ -119,4 +124,12 @@ TEST(RingLattice, UnlikeRingsKeepTheSwatchNeighbours) {
         total += lattice.next[s].size();
     }
     EXPECT_EQ(total, 4u);  // the middle ring's two neighbours, and each end ring's one
+    // Each ring is its own kind; the cube is of none.
+    ASSERT_EQ(lattice.kind.size(), sw.elements.size());
+    std::set<int> kinds;
+    for (std::size_t s = 0; s < sw.elements.size(); ++s) {
+        if (sw.element_genus[s] == 0) EXPECT_EQ(lattice.kind[s], -1);
+        else EXPECT_TRUE(kinds.insert(lattice.kind[s]).second) << "ring " << s << " shares a kind";
+    }
+    EXPECT_EQ(kinds.size(), 3u);
 }

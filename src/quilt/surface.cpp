@@ -779,8 +779,8 @@ private:
         }
     }
 
-    /// Ring kinds and spacing for warp_to_old_rings: rings that are translates of one another (the
-    /// same vertices up to the shift of their centroids, within a thousandth of the spacing).
+    /// Ring kinds and spacing for warp_to_old_rings (quilt::ring_lattice: rings that are translates
+    /// of one another are of one kind).
     void prepare_ring_kinds() {
         const std::size_t n = sw_.elements.size();
         ring_kind_.assign(n, -1);
@@ -791,24 +791,9 @@ private:
             ring_centre_[s] = area_centroid(sw_.elements[s]).head<2>();
         }
         if (!interlocked_) return;
-        ring_spacing_ = quilt::ring_lattice(sw_, is_ring).spacing;
-        const double tol = 1e-3 * ring_spacing_;
-        for (std::size_t s = 0; s < n; ++s) {
-            if (!is_ring[s]) continue;
-            ring_kind_[s] = static_cast<int>(s);
-            for (std::size_t r = 0; r < s; ++r) {
-                if (ring_kind_[r] != static_cast<int>(r)) continue;
-                const Mesh &a = sw_.elements[s], &b = sw_.elements[r];
-                if (a.vertices.size() != b.vertices.size() || a.faces != b.faces) continue;
-                const Vec3 shift(ring_centre_[s].x() - ring_centre_[r].x(), ring_centre_[s].y() - ring_centre_[r].y(), 0.0);
-                bool same = true;
-                for (std::size_t v = 0; v < a.vertices.size() && same; ++v) same = (a.vertices[v] - b.vertices[v] - shift).norm() <= tol;
-                if (same) {
-                    ring_kind_[s] = static_cast<int>(r);
-                    break;
-                }
-            }
-        }
+        const quilt::RingLattice lattice = quilt::ring_lattice(sw_, is_ring);
+        ring_spacing_ = lattice.spacing;
+        if (lattice.kind.size() == n) ring_kind_ = lattice.kind;
     }
 
     /// Rings: closed elements of genus >= 1 that are not threads (they interlock on a lattice).

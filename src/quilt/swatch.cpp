@@ -190,7 +190,8 @@ RingLattice ring_lattice(const SwatchData& swatch, const std::vector<char>& is_r
     lattice.spacing = nearest[nearest.size() / 2];
     const double tol = 1e-3 * lattice.spacing;
     // Kinds: rings that are translates of one another in the plane.
-    std::vector<int> kind(S, -1);
+    std::vector<int>& kind = lattice.kind;
+    kind.assign(S, -1);
     std::vector<std::size_t> first_of_kind;
     for (std::size_t s = 0; s < S; ++s) {
         if (!ring(s)) continue;

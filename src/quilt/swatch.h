@@ -83,6 +83,7 @@ struct RingLattice {
     };
     std::vector<Vec2> centre;                  ///< each element's area centroid (xy)
     double spacing = 0.0;                      ///< median distance from a ring to its nearest ring (0: fewer than two rings)
+    std::vector<int> kind;                     ///< each ring's kind (rings that are translates of one another share it); -1 for other elements
     std::vector<std::vector<Neighbour>> next;  ///< each ring's lattice neighbours (none for other elements)
 };
 
