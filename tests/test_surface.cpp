@@ -492,6 +492,62 @@ TEST(Surface, WeaveCoversASmallDomeThatThePatchMapMagnifies) {
     EXPECT_GE(cover / dome, 0.8);
 }
 
+/// A Japanese 4-in-1 mail, built here: `n` x `n` flat rings (radius 1, wire 0.12) on a grid of
+/// pitch 2.6, each joined to its neighbours by a small ring standing on edge (radius 0.62, wire
+/// 0.1) in the plane through both centres. A standing ring's xy box is 7 times longer than wide, as
+/// a thread's is; it is a ring all the same.
+Mesh japanese_mail(int n) {
+    const double p = 2.6, z = 0.8;
+    Eigen::Matrix3d about_x, about_y;
+    about_x = Eigen::AngleAxisd(0.5 * M_PI, Vec3::UnitX());
+    about_y = Eigen::AngleAxisd(0.5 * M_PI, Vec3::UnitY());
+    Mesh swatch;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            swatch = shapes::concat(swatch, isect::torus(1.0, 0.12, 32, 8, Vec3(1.2 + i * p, 1.2 + j * p, z)));
+            if (i + 1 < n) swatch = shapes::concat(swatch, isect::torus(0.62, 0.1, 20, 8, Vec3(1.2 + (i + 0.5) * p, 1.2 + j * p, z), about_x));
+            if (j + 1 < n) swatch = shapes::concat(swatch, isect::torus(0.62, 0.1, 20, 8, Vec3(1.2 + i * p, 1.2 + (j + 0.5) * p, z), about_y));
+        }
+    return swatch;
+}
+
+TEST(Surface, JapaneseMailKeepsItsStandingRingsWholeAndJoined) {
+    // The small rings stand on edge: long in xy like threads, but cutting or stitching one would
+    // open it (kernel.h, is_elongated). Each small ring joins two flat ones in the swatch; one
+    // that joins one in the output dangles, and goes (surface.cpp, prepare_ring_need).
+    const Mesh swatch = japanese_mail(4);
+    const SurfaceRun run = quilt(shapes::open_cylinder(1.0, 2.0, 64, 32), swatch, 0.25);
+    expect_whole_and_disjoint(run);
+    expect_element_sizes(run, 1.5, 0.7);
+    const RingLinks rl = ring_links(run);
+    const auto parts = mq::test::split_elements(run.r.mesh, run.r.element_of_face);
+    ASSERT_EQ(parts.size(), rl.rings.size());
+    int small = 0, large = 0, small_joined = 0, large_loose = 0, open = 0;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        // Genus from Euler's formula: every element is a whole ring (genus 1), never a piece.
+        const long v = static_cast<long>(parts[i].vertices.size()), f = static_cast<long>(parts[i].faces.size());
+        open += v - f / 2 != 0;
+        // By area: a small ring's is 0.52 of a large one's (4 pi^2 R r).
+        const double scale = run.r.surface.base_scale;
+        if (area(parts[i]) < 3.6 * scale * scale) {
+            ++small;
+            small_joined += rl.links[i] == 2;
+        } else {
+            ++large;
+            large_loose += rl.links[i] == 0;
+        }
+    }
+    const auto [lo, hi] = region_density(run);
+    std::printf("cylinder japanese mail: %d large, %d small (%d joining two), %d mended, %d removed, region density %.3f - %.3f\n", large, small,
+                small_joined, run.r.surface.elements_mended, run.r.surface.rings_unlinked_removed, lo, hi);
+    EXPECT_EQ(open, 0);
+    EXPECT_EQ(large_loose, 0);
+    EXPECT_GE(small_joined, 0.97 * small);
+    EXPECT_GE(small, 1.6 * large);
+    EXPECT_GE(lo, 0.8);
+    EXPECT_LE(hi, 1.2);
+}
+
 TEST(Surface, RingsThatDoNotInterlockInTheSwatchAreKept) {
     // A swatch of washers side by side (tori that link with nothing): their lattice is continued and
     // mended like chain mail's, but no ring is removed for being unlinked.

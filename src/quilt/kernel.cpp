@@ -35,6 +35,9 @@ constexpr double kMinSqueezedArea = 0.6;
 /// ... and is pushed by at most this share of its width at a time.
 constexpr double kMaxSqueezePush = 1.0 / 3.0;
 
+/// Rings pair as partners only within this ratio of their xy diagonals (see plan_patch).
+constexpr double kRingPartnerSize = 1.5;
+
 using Side = std::function<bool(double, double)>;
 
 bool in_overlap(const Side& ov, const Vec3& p) { return ov(p.x(), p.y()); }
@@ -590,6 +593,7 @@ bool squeeze_clear(Mesh& m, const std::vector<std::vector<Vec2>>& others, double
 }
 
 bool is_elongated(const Mesh& m) {
+    if (!m.faces.empty() && 2 * m.vertices.size() <= m.faces.size()) return false;
     const Vec3 d = bounding_box(m).size();
     return std::max(d.x(), d.y()) > 3.0 * std::max(std::min(d.x(), d.y()), 1e-300);
 }
@@ -773,10 +777,28 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
     for (std::size_t o = 0; o < old.size(); ++o)
         for (auto& [e, pairs] : per_old[o]) relations[{static_cast<int>(o), e}] = std::move(pairs);
     // Projected-overlap test removes false relations; then one partner per element, strongest first.
+    // Beyond the paper: a ring pairs only with a ring of its genus and about its size (interlocked
+    // rings touch: a big ring of a Japanese 4-in-1 mail and a small ring through it share many
+    // close vertex-face pairs, and deforming one into the other breaks both).
+    struct Shape { long genus; double diagonal; };
+    auto shape = [](const Mesh& m) {
+        const Vec3 d = bounding_box(m).size();
+        const long v = static_cast<long>(m.vertices.size()), f = static_cast<long>(m.faces.size());
+        return Shape{2 * v <= f ? (2 - v + f / 2) / 2 : 0, std::hypot(d.x(), d.y())};
+    };
+    std::vector<Shape> old_shape, new_shape;
+    for (const OldElement& oe : old) old_shape.push_back(shape(oe.mesh));
+    for (const NewElement& ne : fresh) new_shape.push_back(shape(ne.mesh));
+    auto compatible = [&](int o, int e) {
+        const Shape& a = old_shape[static_cast<std::size_t>(o)];
+        const Shape& b = new_shape[static_cast<std::size_t>(e)];
+        if (a.genus == 0 && b.genus == 0) return true;
+        return a.genus == b.genus && std::max(a.diagonal, b.diagonal) <= kRingPartnerSize * std::min(a.diagonal, b.diagonal);
+    };
     struct Rel { std::size_t count; int o, e; };
     std::vector<Rel> rels;
     for (const auto& [key, pairs] : relations)
-        if (projections_overlap(old[static_cast<std::size_t>(key.first)].mesh, fresh[static_cast<std::size_t>(key.second)].mesh, 0.5 * params.metric.unit))
+        if (compatible(key.first, key.second) && projections_overlap(old[static_cast<std::size_t>(key.first)].mesh, fresh[static_cast<std::size_t>(key.second)].mesh, 0.5 * params.metric.unit))
             rels.push_back({pairs.size(), key.first, key.second});
     std::sort(rels.begin(), rels.end(), [](const Rel& a, const Rel& b) {
         return a.count > b.count || (a.count == b.count && (a.o < b.o || (a.o == b.o && a.e < b.e)));

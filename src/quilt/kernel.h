@@ -114,7 +114,12 @@ double polygon_area(const std::vector<Vec2>& polygon);
 /// Convex hull of the xy projection of the vertices that faces use, counter-clockwise (CGAL).
 std::vector<Vec2> xy_hull(const Mesh& m);
 
-/// A long element (a thread): its xy box more than 3 times longer than wide.
+/// A long element (a thread): its xy box more than 3 times longer than wide, and not a closed
+/// surface with a handle. A ring standing on edge (a chain mail's connecting ring, Japanese
+/// 4-in-1) or a long oval link is as long in xy, but cutting or stitching it would open a loop
+/// that must stay closed: it is a ring (genus >= 1), not a thread. The genus test is Euler's
+/// formula for a closed triangle mesh (V - F/2 = 2 - 2g, so 2V <= F means g >= 1); a mesh with a
+/// boundary or unused vertices gives a larger V - F/2 and stays a thread.
 bool is_elongated(const Mesh& m);
 
 /// The smallest distance, capped at `cap`, between vertices of `a` (with bounding box `a_box`) and

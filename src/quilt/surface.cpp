@@ -228,6 +228,7 @@ public:
         for (std::size_t e = 0; e < sw_.elements.size(); ++e) rings_ = rings_ || is_ring_source(static_cast<int>(e));
         interlocked_ = rings_ && swatch_rings_interlock();
         prepare_ring_kinds();
+        prepare_ring_need();
         fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea, true);
         joints_ = quilt::prepare_joints(sw_);
         prepare_thread_sets();
@@ -276,12 +277,18 @@ public:
             // Beyond the paper: in an interlocking swatch (chain mail) a ring that holds on to no
             // other is loose in the fabric (it would fall out of a print); it goes, and mending may
             // put a linked ring in its slot.
-            if (interlocked_)
+            // A connecting ring (one that joins exactly two rings in the swatch, as the small rings
+            // of a Japanese 4-in-1 do) that holds on to one joins nothing: it goes too. Removing it
+            // may loosen another ring, so this repeats until nothing goes.
+            for (bool removed = interlocked_; removed;) {
+                removed = false;
                 for (const auto& [id, n] : ring_links())
-                    if (n == 0) {
+                    if (n < ring_need_[static_cast<std::size_t>(elems_[static_cast<std::size_t>(id)].source)]) {
                         remove_element(id);
                         ++surface_.rings_unlinked_removed;
+                        removed = true;
                     }
+            }
             mend_rings();
         }
         stage_seconds_["mending"] += seconds_since(t0);
@@ -1730,15 +1737,48 @@ private:
     }
 
     /// Does ring `m` interlock with any of the standing elements `ids`?
-    bool links_any(const Mesh& m, const std::vector<int>& ids) const {
+    bool links_any(const Mesh& m, const std::vector<int>& ids) const { return links_with(m, ids, 1) >= 1; }
+
+    /// How many of rings `ids` ring `m` links with, counted up to `enough`.
+    int links_with(const Mesh& m, const std::vector<int>& ids, int enough) const {
         const std::vector<Vec3> line = ring_centerline(m);
-        if (line.size() < 3) return false;
+        if (line.size() < 3) return 0;
         const Box3 box = bounding_box(m);
+        int n = 0;
         for (int id : ids) {
             const SurfElement& other = elems_[static_cast<std::size_t>(id)];
-            if (box.overlaps(bounding_box(other.embedded)) && links_once(line, other.centerline)) return true;
+            if (box.overlaps(bounding_box(other.embedded)) && links_once(line, other.centerline) && ++n >= enough) break;
         }
-        return false;
+        return n;
+    }
+
+    /// ring_need_: per swatch element, the links a ring of its kind must keep in the output: a
+    /// connecting ring (every ring of its kind joins at most two in the swatch, and one joins two)
+    /// both, any other ring one (a ring of a 4-in-1 mail at a seam holds with one or two; asking
+    /// two of every ring cost a tenth of the rings on the eight, session 11).
+    void prepare_ring_need() {
+        const std::size_t n = sw_.elements.size();
+        ring_need_.assign(n, 1);
+        if (!interlocked_) return;
+        std::vector<std::vector<Vec3>> lines(n);
+        std::vector<Box3> boxes(n);
+        for (std::size_t s = 0; s < n; ++s)
+            if (is_ring_source(static_cast<int>(s))) {
+                lines[s] = ring_centerline(sw_.elements[s]);
+                boxes[s] = bounding_box(sw_.elements[s]);
+            }
+        std::vector<int> links(n, 0);
+        for (std::size_t a = 0; a < n; ++a)
+            for (std::size_t b = a + 1; b < n && lines[a].size() >= 3; ++b)
+                if (lines[b].size() >= 3 && boxes[a].overlaps(boxes[b]) && links_once(lines[a], lines[b])) {
+                    ++links[a];
+                    ++links[b];
+                }
+        std::map<int, int> most;  // per ring kind
+        for (std::size_t s = 0; s < n; ++s)
+            if (ring_kind_[s] >= 0) most[ring_kind_[s]] = std::max(most[ring_kind_[s]], links[s]);
+        for (std::size_t s = 0; s < n; ++s)
+            if (ring_kind_[s] >= 0 && most[ring_kind_[s]] == 2) ring_need_[s] = 2;
     }
 
     /// Do the swatch's rings interlock (chain mail), rather than lie side by side? True when at
@@ -2025,7 +2065,7 @@ private:
                 // swatch element's size (the square root of the area; the stage promises 1.5).
                 if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) continue;
                 if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
-                if (interlocked_ && !links_any(*embedded, around)) {
+                if (interlocked_ && links_with(*embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
                     *lasting = false;  // a ring mended later may give it a link
                     continue;
                 }
@@ -2585,6 +2625,7 @@ private:
     bool woven_ = false;        ///< the swatch has threads in both directions (a weave)
     Mesh lattice_probe_;        ///< the swatch's middle, for fit_lattice_scale (chain mail, weaves)
     std::vector<int> ring_kind_;      ///< per swatch element: the first ring it is a translate of (-1: no ring)
+    std::vector<int> ring_need_;      ///< per swatch element: links a ring of it keeps in the output (prepare_ring_need)
     std::vector<Vec2> ring_centre_;   ///< per swatch element: its area centroid (xy)
     double ring_spacing_ = 0.0;       ///< the swatch's ring spacing (quilt::RingLattice), 0 without interlocked rings
     double last_radius_ = 0.0;  ///< the last patch's radius, divided by its local scale
