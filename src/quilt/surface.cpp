@@ -57,6 +57,11 @@ constexpr double kLatticeSizeDrift = 1.3;
 /// A bald spot is filled where the ground around it holds less than this share of the swatch's
 /// density: the 15% the surface stage allows (fill_patch; quilt/fill.h).
 constexpr double kFillSparse = 0.85;
+/// The rasters of a patch's footprint (bald spots, thread gaps) have at most about this many
+/// pixels: their pixel follows the swatch's gaps, and the public snowflake swatch (elements 0.04
+/// apart in a footprint 145 wide) asked for 37 million per patch, which took over ten minutes on
+/// spot at scale 0.3.
+constexpr double kMaxRasterPixels = 250000.0;
 /// ... with a blob that keeps at least this share of its footprint and area (its size, the square
 /// root of the area, stays within the factor 1.5 the stage promises).
 constexpr double kFillMinArea = 0.5;
@@ -229,7 +234,7 @@ public:
         interlocked_ = rings_ && swatch_rings_interlock();
         prepare_ring_kinds();
         prepare_ring_need();
-        fill_ = quilt::prepare_fill(sw_, 0.0, kFillSparse, kFillMinArea, true);
+        fill_ = quilt::prepare_fill(sw_, min_raster_pixel(), kFillSparse, kFillMinArea, true);
         joints_ = quilt::prepare_joints(sw_);
         prepare_thread_sets();
         prepare_lattice_probe();
@@ -802,6 +807,9 @@ private:
         ring_spacing_ = lattice.spacing;
         if (lattice.kind.size() == n) ring_kind_ = lattice.kind;
     }
+
+    /// The smallest pixel of a footprint raster (kMaxRasterPixels).
+    double min_raster_pixel() const { return std::sqrt(sw_.box.size().x() * sw_.box.size().y() / kMaxRasterPixels); }
 
     /// Rings: closed elements of genus >= 1 that are not threads (they interlock on a lattice).
     bool is_ring_source(int s) const {
@@ -1413,7 +1421,7 @@ private:
         for (int along = 0; along < 2; ++along) {
             const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
             if (ts.ids.empty()) continue;
-            const double r = ts.spacing, pixel = 0.25 * ts.width;  // neighbours within a spacing bound the gaps
+            const double r = ts.spacing, pixel = std::max(0.25 * ts.width, min_raster_pixel());  // neighbours within a spacing bound the gaps
             quilt::Coverage cov(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel), ground(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel);
             ground.add(patch);
             std::vector<const Mesh*> crossing;  // the elements running the other way, and those laid that way
