@@ -1744,10 +1744,7 @@ private:
         return links;
     }
 
-    /// Does ring `m` interlock with any of the standing elements `ids`?
-    bool links_any(const Mesh& m, const std::vector<int>& ids) const { return links_with(m, ids, 1) >= 1; }
-
-    /// How many of rings `ids` ring `m` links with, counted up to `enough`.
+    /// How many of the standing rings `ids` ring `m` interlocks with, counted up to `enough`.
     int links_with(const Mesh& m, const std::vector<int>& ids, int enough) const {
         const std::vector<Vec3> line = ring_centerline(m);
         if (line.size() < 3) return 0;
