@@ -8,6 +8,7 @@
 #include "quilt/deform.h"
 #include "quilt/kernel.h"
 #include "support/shapes.h"
+#include "support/shapes_isect.h"
 
 #include <gtest/gtest.h>
 
@@ -95,4 +96,32 @@ TEST(Stitching, TwoThreadsBecomeOneAndMoveOnlyNearTheSeam) {
             ++checked;
         }
     EXPECT_GT(checked, 50);
+}
+
+TEST(Correspondences, RingsPairOnlyWithRingsOfTheirSize) {
+    // A flat ring and a small ring standing on edge through it (Japanese 4-in-1 mail): interlocked
+    // rings touch, and share many close vertex-face pairs, but deforming one into the other breaks
+    // both. A ring of the flat ring's own size, a little off it, is its partner.
+    namespace isect = mq::test::isect;
+    const Mesh flat = isect::torus(1.0, 0.12, 32, 8, Vec3(0.0, 0.0, 0.8));
+    Eigen::Matrix3d about_x;
+    about_x = Eigen::AngleAxisd(0.5 * M_PI, Vec3::UnitX());
+    const Mesh standing = isect::torus(0.62, 0.1, 20, 8, Vec3(1.3, 0.0, 0.8), about_x);
+    const Mesh twin = isect::torus(1.0, 0.12, 32, 8, Vec3(0.05, 0.03, 0.8));
+    mq::quilt::Overlap ov;
+    ov.old_side = [](double, double) { return true; };
+    ov.new_side = [](double, double) { return true; };
+    mq::quilt::KernelParams params;
+    params.metric.unit = 0.1;
+    const std::vector<mq::quilt::OldElement> old{{0, flat, 0}};
+
+    const mq::quilt::PatchPlan through = mq::quilt::plan_patch(old, {{1, standing}}, ov, params);
+    EXPECT_EQ(through.correspondences, 0);
+    for (const auto& ch : through.changes) {
+        EXPECT_EQ(ch.kind, mq::quilt::PatchPlan::Change::Added);  // never merged with the flat ring
+        EXPECT_EQ(ch.mesh.vertices, standing.vertices);
+    }
+
+    const mq::quilt::PatchPlan beside = mq::quilt::plan_patch(old, {{0, twin}}, ov, params);
+    EXPECT_EQ(beside.correspondences, 1);
 }
