@@ -247,15 +247,11 @@ struct BaseCase {
     std::function<Mesh()> make;
     std::string swatch;
     double scale;
-    /// Density within 15% in every region. Off for chain mail (see docs/surface.md for the
-    /// measured figures).
-    bool density = true;
     /// Each element within 1.5 of its swatch element's size. Off for threads, which are stitched
     /// across patches into elements longer than the swatch's (the planar tests check that they are).
     bool sizes = true;
-    /// Where the density is not held to 15%: the lowest region must still reach this (what was
-    /// measured, rounded down, so that a regression shows).
-    double floor = 0.0;
+    // Every case is held to the density within 15% in every region (chain mail on the eight since
+    // session 20's ring holes; before, to its measured lowest region).
 };
 
 class SurfaceBases : public ::testing::TestWithParam<BaseCase> {};
@@ -293,10 +289,6 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     RecordProperty("density_max", std::to_string(hi));
     std::printf("%s + %s: region density %.3f - %.3f of the swatch's (threads laid into gaps %d, after the last patch %d)\n", c.name.c_str(),
                 c.swatch.c_str(), lo, hi, run.r.surface.threads_filled, run.r.surface.threads_mended);
-    if (!c.density) {
-        EXPECT_GE(lo, c.floor) << "the lowest region fell below what was measured";
-        return;
-    }
     ASSERT_GT(hi, 0.0) << "no region of two footprints: choose a smaller scale";
     EXPECT_GE(lo, 0.85) << "a region is balder than the swatch";
     EXPECT_LE(hi, 1.15) << "a region is denser than the swatch";
@@ -311,10 +303,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BaseCase{"cylinder_chainmail", [] { return shapes::open_cylinder(1.0, 2.0, 64, 32); }, "chainmail", 0.2},
                       BaseCase{"sphere_pebbles", [] { return isect::icosphere(1.0, 3); }, "pebbles", 0.22},
                       BaseCase{"cube", [] { return shapes::cube(2.0); }, "rivets", 0.25},
-                      BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2, false, true, 0.8},
-                      BaseCase{"tube_weave", [] { return mq::read_mesh(surface_data_path("tube.obj")); }, "weave", 0.2, true, false},
-                      BaseCase{"torus_weave", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "weave", 0.2, true, false},
-                      BaseCase{"eight_weave", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "weave", 0.2, true, false},
+                      BaseCase{"eight_chainmail", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "chainmail", 0.2},
+                      BaseCase{"tube_weave", [] { return mq::read_mesh(surface_data_path("tube.obj")); }, "weave", 0.2, false},
+                      BaseCase{"torus_weave", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "weave", 0.2, false},
+                      BaseCase{"eight_weave", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "weave", 0.2, false},
                       BaseCase{"eight_pebbles", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "pebbles", 0.2},
                       BaseCase{"torus_cobbles", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "cobbles", 0.2}),
     [](const auto& info) { return info.param.name; });
@@ -416,19 +408,22 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     const auto [lo, hi] = region_density(run);
     std::printf("eight chain mail: %d mended, region density %.3f - %.3f; %s\n", run.r.surface.elements_mended, lo, hi, h.c_str());
     RecordProperty("links", h);
-    // Measured at seed 1: 958 rings, 94 mended, 458 linked with 4, none with none; region density
-    // 0.843-1.078. Before session 18's warp of the new rings onto the old ones: 918 rings, 409 linked
+    // Measured at seed 1: 1,060 rings, 196 mended (132 of them into holes between lattices, session
+    // 20), 537 linked with 4, none with none; region density 0.948-1.135. Before the ring holes: 958
+    // rings, 94 mended, 458 linked with 4, 0.843-1.078. Before session 18's warp of the new rings onto the old ones: 918 rings, 409 linked
     // with 4 (0.446 of them), 0.840-1.006; before session 17: 901 rings, 406 with 4, 0.821-0.997. With each ring resized about its own centre (before
     // session 16: the lattice broken): 762 rings, 114 mended, 253 linked with 4, 0.689-0.836. Before
     // lattice turning and mending (session 11): 667 rings, 132 linked with 4, 83 with none,
     // 0.646-0.796. Issue 3 asks for 0.85.
     const auto count = static_cast<double>(rl.rings.size());
     EXPECT_GT(run.r.surface.elements_mended, 20);
+    EXPECT_GT(run.r.surface.ring_holes_filled, 60);
+    EXPECT_LE(run.r.surface.ring_holes_filled, run.r.surface.elements_mended);
     EXPECT_GT(run.r.surface.rings_unlinked_removed, 0);
     EXPECT_GE(histogram[4], 0.46 * count) << h;
     EXPECT_EQ(histogram[0], 0) << "a ring of the chain mail is loose; " << h;
-    EXPECT_GE(count, 930);
-    EXPECT_GE(lo, 0.8);
+    EXPECT_GE(count, 1020);
+    EXPECT_GE(lo, 0.9);
 }
 
 TEST(Surface, WeaveCoversASmallDomeThatThePatchMapMagnifies) {
@@ -753,18 +748,19 @@ TEST(SurfaceField, WithoutAFieldNeighboursAgreeUpToTheSwatchSymmetry) {
 // Bad input.
 
 // A swatch whose elements are as wide as the base's features: on a bar narrower than a ring nothing
-// fits, which is an error (no empty decoration is written); on a bar twice as wide a few rings fit,
-// which is a result with a warning that names the density reached.
+// fits, which is an error (no empty decoration is written); on a bar a third wider a few rings fit,
+// which is a result with a warning that names the density reached. (On a bar 1.2 wide, twice as
+// wide, the ring holes of session 20 fill the mail to 0.91 of the swatch's density.)
 TEST(SurfaceErrors, ASwatchTooLargeForTheBaseIsAnErrorOrAWarning) {
     const Mesh chainmail = mq::read_mesh(swatch_path("chainmail"));
     mq::SurfaceQuiltOptions o;
     o.swatch_size = 4.5;  // rings about 0.75 wide
     EXPECT_TRUE(mq::test::throws_with<mq::InvalidInput>([&] { (void)mq::quilt_surface(isect::cuboid(Vec3(0, 0, 0), Vec3(0.6, 0.6, 8.0)), chainmail, o); },
                                                         {"no element of the swatch fits", "smaller --scale or --swatch-size"}));
-    const auto r = mq::quilt_surface(isect::cuboid(Vec3(0, 0, 0), Vec3(1.2, 1.2, 8.0)), chainmail, o);
+    const auto r = mq::quilt_surface(isect::cuboid(Vec3(0, 0, 0), Vec3(1.0, 1.0, 8.0)), chainmail, o);
     EXPECT_GT(r.report.elements, 0);
     ASSERT_GT(r.surface.regions, 0);
-    EXPECT_LT(r.surface.region_density_min, 0.5);  // measured: 0.21
+    EXPECT_LT(r.surface.region_density_min, 0.5);  // measured: 0.19 (19 rings)
     EXPECT_EQ(std::count_if(r.warnings.begin(), r.warnings.end(),
                             [](const std::string& w) { return w.find("decoration is sparse: its thinnest region holds 0.") != std::string::npos &&
                                                               w.find("smaller --scale") != std::string::npos; }),

@@ -109,6 +109,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"elements_enlarged", s.elements_enlarged},
                         {"elements_nudged", s.elements_nudged},
                         {"elements_mended", s.elements_mended},
+                        {"ring_holes_filled", s.ring_holes_filled},
                         {"rings_unlinked_removed", s.rings_unlinked_removed},
                         {"symmetry", s.symmetry},
                         {"base_units_per_swatch_unit", s.base_scale},

@@ -15,6 +15,7 @@
 #include "quilt/kernel.h"
 #include "quilt/match.h"
 #include "quilt/patch.h"
+#include "quilt/solid_grid.h"
 #include "quilt/swatch.h"
 #include "quilt/trim.h"
 #include "shellmap/visibility.h"
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <complex>
 #include <deque>
+#include <functional>
 #include <map>
 #include <random>
 #include <unordered_map>
@@ -70,6 +72,33 @@ constexpr double kFillOnPatch = 0.8;
 /// A lattice slot is empty (mend_rings) when no element's centre lies within this share of the
 /// swatch's ring spacing.
 constexpr double kMendEmpty = 0.6;
+/// A ring hole (fill_ring_holes) is a point of a mending frame farther than this many ring
+/// spacings from every element's centre (a square lattice's widest is 0.71, the bundled chain mail's
+/// 0.64 in the plane),
+constexpr double kHoleEmpty = 0.75;
+/// ... offered the kHoleSlots slots nearest to it of each of the nearest kHoleLattices rings' lattices,
+constexpr int kHoleLattices = 2;
+constexpr int kHoleSlots = 1;
+/// ... moved to it and to points around it at these distances (spacings; 8 directions each),
+constexpr std::array<double, 2> kHoleShifts{0.2, 0.4};
+/// ... turned by up to this much either way (radians) in this many steps each side.
+constexpr double kHoleTurn = 0.3;
+constexpr int kHoleTurnSteps = 3;
+/// A try with this many vertices inside a standing ring's solid, or of the ring's vertices in
+/// the try's (SolidGrid: a swatch element's, kSolidCells along its longest side), is refused
+/// before it is embedded ...
+constexpr int kHoleClash = 2;
+constexpr int kSolidCells = 64;
+constexpr int kFrameSolidCells = 32;
+/// ... against the standing rings whose centres lie within this many spacings of the hole (their
+/// parts on the frame, kFrameSolidCells along the longest side).
+constexpr double kHoleReach = 2.0;
+/// Tries embedded for ring holes, at most, per ring standing when mending starts,
+constexpr double kHoleBudget = 4.0;
+/// ... and at most this many per ring standing (and 1,000) plus this many per ring put into a
+/// hole (hole_budget).
+constexpr double kHoleTriesFree = 1.0;
+constexpr long kHoleTriesPerRing = 50;
 /// A mended ring keeps at least this share of its swatch element's size (square root of area).
 constexpr double kMendMinSize = 0.75;
 /// An element the patch places keeps at least this share of its swatch element's size (the square
@@ -1837,6 +1866,16 @@ private:
         const double R = 0.5 * std::hypot(sx_, sy_) * cell_;
         mend_failed_.clear();
         mend_failed_grid_.clear();
+        hole_failed_.clear();
+        hole_failed_grid_.clear();
+        // Ring holes embed at most kHoleBudget tries per ring standing (chain mail on spot: 1.7;
+        // a swatch whose rings rarely fit, such as a Japanese mail's connectors that must link
+        // two rings, would otherwise try for minutes).
+        const auto standing = static_cast<double>(
+            std::count_if(elems_.begin(), elems_.end(), [&](const SurfElement& e) { return e.alive && is_ring_source(e.source); }));
+        hole_tries_ = 0;
+        hole_budget_ = static_cast<long>(kHoleBudget * standing);
+        hole_free_ = std::max(1000L, static_cast<long>(kHoleTriesFree * standing));
         mend_cell_ = std::max(spacing * scale_ * *std::max_element(local_scale_.begin(), local_scale_.end()), 1e-12);
         tile_frames(R, kMendPasses, "mending", [&](const Frame& fr) { mend_frame(fr.flat, fr.local, R, lattice); });
     }
@@ -1993,6 +2032,209 @@ private:
                 }
             }
         }
+        fill_ring_holes(flat, locator, hs, local, R, lattice, poses, filled, filled_id, &anchors, &embedded);
+    }
+
+    /// Beyond the paper: holes at the seams of ring lattices. Where two lattices meet at an angle,
+    /// each one's slot near the seam holds a ring of the other close by (not empty for mend_frame),
+    /// or its ring collides there, and a hole wider than any of the swatch's own stays between them.
+    /// Holes are found on a grid over the frame's core (points farther than kHoleEmpty spacings from
+    /// every element's centre, widest first); each is offered the ring that the nearest standing
+    /// rings' lattices have nearest to it, moved to the hole's centre and turned by up to
+    /// kHoleTurn either way (a ring between two lattices follows neither), as mend_slot places it.
+    void fill_ring_holes(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, double R,
+                         const quilt::RingLattice& lattice, const std::vector<Pose>& poses, std::vector<Vec2>& filled, std::vector<int>& filled_id,
+                         std::vector<SurfacePoint>* anchors, Mesh* embedded) {
+        if (poses.empty() || hole_tries_ >= hole_budget()) return;
+        const double spacing = lattice.spacing;
+        std::vector<double> units;
+        for (const Pose& p : poses) units.push_back(spacing * std::sqrt(std::fabs(p.A.determinant())));
+        std::nth_element(units.begin(), units.begin() + static_cast<std::ptrdiff_t>(units.size() / 2), units.end());
+        const double unit = units[units.size() / 2];
+        if (!(unit > 0.0)) return;
+        const double step = 0.25 * unit;
+        const int n = static_cast<int>(std::ceil(R / step));
+        auto empty_at = [&](const Vec2& q) {
+            double d = std::numeric_limits<double>::infinity();
+            for (const Vec2& c : filled) d = std::min(d, (c - q).squaredNorm());
+            return std::sqrt(d);
+        };
+        std::vector<std::pair<double, Vec2>> holes;
+        for (int iy = -n; iy <= n; ++iy)
+            for (int ix = -n; ix <= n; ++ix) {
+                const Vec2 q(ix * step, iy * step);
+                if (q.norm() > R) continue;
+                if (const double d = empty_at(q); d > kHoleEmpty * unit) holes.push_back({d, q});
+            }
+        std::sort(holes.begin(), holes.end(), [](const auto& a, const auto& b) {
+            return a.first > b.first || (a.first == b.first && (a.second.x() < b.second.x() || (a.second.x() == b.second.x() && a.second.y() < b.second.y())));
+        });
+        if (holes.empty()) return;
+        std::vector<double> turns;
+        for (int k = 0; k <= kHoleTurnSteps; ++k) {
+            const double t = kHoleTurn * k / kHoleTurnSteps;
+            turns.push_back(t);
+            if (k > 0) turns.push_back(-t);
+        }
+        struct StandingRing {
+            Mesh mesh;  ///< in the frame (the part on it)
+            Vec2 centre;
+            Vec3 lo, hi;  ///< its box
+            quilt::SolidGrid solid;  ///< built on first use
+        };
+        std::vector<StandingRing> standing;
+        for (FrameElement& fe : frame_elements(flat, hs)) {
+            if (!is_ring_source(elems_[static_cast<std::size_t>(fe.id)].source) || fe.mesh.vertices.empty()) continue;
+            Vec2 c = Vec2::Zero();
+            Vec3 lo = fe.mesh.vertices.front(), hi = lo;
+            for (const Vec3& v : fe.mesh.vertices) {
+                c += v.head<2>();
+                lo = lo.cwiseMin(v);
+                hi = hi.cwiseMax(v);
+            }
+            c /= static_cast<double>(fe.mesh.vertices.size());
+            standing.push_back({std::move(fe.mesh), c, lo, hi, {}});
+        }
+        std::vector<Vec2> tried;  // one try per hole: its other grid points lie within half a spacing
+        for (const auto& [d0, h] : holes) {
+            if (hole_tries_ >= hole_budget()) return;
+            if (empty_at(h) <= kHoleEmpty * unit) continue;  // a ring went in nearby
+            if (std::any_of(tried.begin(), tried.end(), [&](const Vec2& q) { return (q - h).norm() < 0.5 * unit; })) continue;
+            tried.push_back(h);
+            Vec3 at, dir;
+            double tolerance = 0.0;
+            if (!slot_on_surface(flat, locator, h, 0.0, unit, &at, &dir, &tolerance) || hole_failed(at, 2.5 * tolerance)) continue;
+            std::vector<std::pair<double, std::size_t>> near;  // standing rings by distance
+            for (std::size_t k = 0; k < poses.size(); ++k) {
+                const Vec2 c = poses[k].A * lattice.centre[static_cast<std::size_t>(poses[k].source)] + poses[k].t;
+                near.push_back({(c - h).squaredNorm(), k});
+            }
+            std::sort(near.begin(), near.end());
+            // Tries that reach into a standing ring (a vertex inside its solid in the frame, or
+            // one of its vertices inside the try's) are refused before they are embedded: of the
+            // tries embedded without this test, 99.5% collided (the eight at scale 0.2); with it,
+            // 16 times fewer are embedded for as many rings.
+            std::vector<std::size_t> blocking;
+            for (std::size_t k = 0; k < standing.size(); ++k)
+                if ((standing[k].centre - h).norm() <= kHoleReach * unit) blocking.push_back(k);
+            const Clash clash = [&](const Mesh& cand, int j, const Eigen::Matrix2d& M, const Vec2& b) {
+                const Eigen::Matrix2d Minv = M.inverse();
+                if (!Minv.allFinite()) return true;
+                const quilt::SolidGrid& mine = solid_of(j);
+                Vec3 lo = cand.vertices.front(), hi = lo;
+                for (const Vec3& v : cand.vertices) {
+                    lo = lo.cwiseMin(v);
+                    hi = hi.cwiseMax(v);
+                }
+                int inside = 0;
+                for (std::size_t k : blocking) {
+                    StandingRing& o = standing[k];
+                    if ((o.lo.array() > hi.array()).any() || (o.hi.array() < lo.array()).any()) continue;
+                    if (o.solid.empty()) o.solid = quilt::SolidGrid(o.mesh, kFrameSolidCells);
+                    for (const Vec3& v : cand.vertices)
+                        if (o.solid.inside(v) && ++inside >= kHoleClash) return true;
+                    for (const Vec3& v : o.mesh.vertices) {
+                        const Vec2 q = Minv * (v.head<2>() - b);
+                        if (mine.inside(Vec3(q.x(), q.y(), v.z())) && ++inside >= kHoleClash) return true;
+                    }
+                }
+                return false;
+            };
+            // The rings offered: of each of the nearest kHoleLattices standing rings' lattices, the
+            // kHoleSlots slots nearest the hole (within a spacing), each moved to the hole.
+            struct Offer {
+                const Pose* pose;
+                const quilt::RingLattice::Neighbour* slot;
+                Vec2 centre;
+            };
+            std::vector<Offer> offers;
+            for (std::size_t m = 0; m < near.size() && m < static_cast<std::size_t>(kHoleLattices); ++m) {
+                const Pose& pose = poses[near[m].second];
+                std::vector<std::pair<double, const quilt::RingLattice::Neighbour*>> slots;
+                for (const quilt::RingLattice::Neighbour& next : lattice.next[static_cast<std::size_t>(pose.source)]) {
+                    const Vec2 c = pose.A * (lattice.centre[static_cast<std::size_t>(next.source)] + next.shift) + pose.t;
+                    if ((c - h).norm() <= unit) slots.push_back({(c - h).norm(), &next});
+                }
+                std::sort(slots.begin(), slots.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+                for (std::size_t k = 0; k < slots.size() && k < static_cast<std::size_t>(kHoleSlots); ++k)
+                    offers.push_back({&pose, slots[k].second,
+                                      pose.A * (lattice.centre[static_cast<std::size_t>(slots[k].second->source)] + slots[k].second->shift) + pose.t});
+            }
+            bool placed_any = false;
+            double fit = 0.0;  // the map's scale at the hole, found by the first ring embedded (mend_slot)
+            for (const Offer& offer : offers) {
+                // The hole's centre first, then points around it on two circles (the hole's widest
+                // point is rarely where a ring fits between two lattices).
+                const Vec2 ax = offer.pose->A.col(0).normalized(), ay = offer.pose->A.col(1).normalized();
+                std::vector<Vec2> offs{Vec2::Zero()};
+                for (const double r : kHoleShifts)
+                    for (const Vec2& o : {ax, Vec2(-ax), ay, Vec2(-ay), Vec2(ax + ay), Vec2(ax - ay), Vec2(-ax + ay), Vec2(-ax - ay)})
+                        offs.push_back(r * unit * o.normalized());
+                for (const Vec2& off : offs) {
+                    const Vec2 hc = h + off;
+                    Pose moved = *offer.pose;
+                    moved.t += hc - offer.centre;
+                    std::vector<int> around;
+                    for (std::size_t i = 0; i < filled.size(); ++i)
+                        if ((filled[i] - hc).norm() < 1.6 * unit && is_ring_source(elems_[static_cast<std::size_t>(filled_id[i])].source)) around.push_back(filled_id[i]);
+                    bool lasting = true;
+                    Pose placed;
+                    if (mend_slot(flat, locator, hs, local, moved, offer.slot->source, offer.slot->shift, hc, around, anchors, embedded, &placed, &lasting, &turns,
+                                  &clash, &fit)) {
+                        filled.push_back(hc);
+                        filled_id.push_back(static_cast<int>(elems_.size()) - 1);
+                        ++surface_.ring_holes_filled;
+                        placed_any = true;
+                        break;
+                    }
+                }
+                if (placed_any) break;
+            }
+            if (!placed_any) {  // wanting a link or room on the frame too: holes are many, and tries dear
+                hole_failed_.push_back(at);
+                hole_failed_grid_[mend_key(at)].push_back(hole_failed_.size() - 1);
+            }
+        }
+    }
+
+    /// A quick test of a ring's try in a mending frame (fill_ring_holes): its mesh in the frame,
+    /// its swatch element and the map M v + b of that element's xy onto the frame.
+    using Clash = std::function<bool(const Mesh&, int, const Eigen::Matrix2d&, const Vec2&)>;
+
+    /// The solid of swatch element `s` (built on first use).
+    const quilt::SolidGrid& solid_of(int s) {
+        if (solid_.size() != sw_.elements.size()) solid_.assign(sw_.elements.size(), {});
+        auto& g = solid_[static_cast<std::size_t>(s)];
+        if (g.empty()) g = quilt::SolidGrid(sw_.elements[static_cast<std::size_t>(s)], kSolidCells);
+        return g;
+    }
+
+    /// Tries fill_ring_holes may still embed: kHoleBudget per ring standing when mending started,
+    /// and no more than kHoleTriesFree per ring standing (at least 1,000) and kHoleTriesPerRing for
+    /// each ring it put in (chain mail on spot takes 19 tries per ring put in; where rings rarely
+    /// fit, tries stop early).
+    long hole_budget() const {
+        return std::min(hole_budget_, hole_free_ + kHoleTriesPerRing * static_cast<long>(surface_.ring_holes_filled));
+    }
+
+    /// Was a hole tried in vain within `tolerance` of `at`?
+    bool hole_failed(const Vec3& at, double tolerance) const {
+        return any_in_cells(hole_failed_grid_, at, [&](std::size_t i) { return (hole_failed_[i] - at).norm() < tolerance; });
+    }
+
+    /// Does `hit` hold for an entry of `grid` (mend_key cells) in the 27 cells around `at`?
+    template <class Hit>
+    bool any_in_cells(const std::map<std::array<long, 3>, std::vector<std::size_t>>& grid, const Vec3& at, const Hit& hit) const {
+        const auto k = mend_key(at);
+        for (long dx = -1; dx <= 1; ++dx)
+            for (long dy = -1; dy <= 1; ++dy)
+                for (long dz = -1; dz <= 1; ++dz) {
+                    const auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
+                    if (it == grid.end()) continue;
+                    for (std::size_t i : it->second)
+                        if (hit(i)) return true;
+                }
+        return false;
     }
 
     /// A frame slot on the surface: its base point and the 3D direction of the frame's angle
@@ -2022,46 +2264,66 @@ private:
 
     /// Was a ring tried in vain at `at` with direction `dir` (within `tolerance` and 3 degrees)?
     bool mend_failed(const Vec3& at, const Vec3& dir, double tolerance) const {
-        const auto k = mend_key(at);
-        for (long dx = -1; dx <= 1; ++dx)
-            for (long dy = -1; dy <= 1; ++dy)
-                for (long dz = -1; dz <= 1; ++dz) {
-                    const auto it = mend_failed_grid_.find({k[0] + dx, k[1] + dy, k[2] + dz});
-                    if (it == mend_failed_grid_.end()) continue;
-                    for (std::size_t i : it->second)
-                        if ((mend_failed_[i].first - at).norm() < tolerance && mend_failed_[i].second.dot(dir) > std::cos(3.0 * M_PI / 180.0)) return true;
-                }
-        return false;
+        return any_in_cells(mend_failed_grid_, at, [&](std::size_t i) {
+            return (mend_failed_[i].first - at).norm() < tolerance && mend_failed_[i].second.dot(dir) > std::cos(3.0 * M_PI / 180.0);
+        });
     }
 
     /// Tries swatch ring `j`, shifted by `shift` in the swatch, where `pose` puts it (centre `c` in
     /// the frame): as it is, turned by up to 6 degrees either way about c, then shrunk to 0.92 and
     /// 0.85 of its size (a ring between two lattices that meet at an angle often fits only a little
     /// smaller; each shrink of the 38 rings mended on the eight, 15 were smaller). The first pose
-    /// that lies on the patch, collides with nothing and does not fold is added.
+    /// that lies on the patch, collides with nothing and does not fold is added. fill_ring_holes
+    /// passes its own `turns`, a quick `clash` test that refuses a pose before it is embedded, and
+    /// `fit_io`, the map's scale for the ring's size, found once per hole (0: not yet).
     bool mend_slot(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, const Pose& pose, int j,
                    const Vec2& shift, const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed,
-                   bool* lasting) {
+                   bool* lasting, const std::vector<double>* turns = nullptr, const Clash* clash = nullptr, double* fit_io = nullptr) {
+        static const std::vector<double> kTurns{0.0, 0.05, -0.05, 0.1, -0.1};
         *lasting = true;  // every pose collided or folded: more rings will not change that
         const Mesh& src = sw_.elements[static_cast<std::size_t>(j)];
         const double want = std::max(mesh_area(src) * scale_ * scale_ * local * local, 1e-300);
-        double fit = 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
+        const Vec3 src_centroid = area_centroid(src);
+        double fit = fit_io ? *fit_io : 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
         for (const double shrink : {1.0, 0.92, 0.85})
-            for (const double turn : {0.0, 0.05, -0.05, 0.1, -0.1}) {
+            for (const double turn : turns ? *turns : kTurns) {
                 Eigen::Matrix2d T;
                 T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
                 Mesh m = src;
-                for (Vec3& v : m.vertices) {
-                    const Vec2 q = T * (pose.A * (v.head<2>() + shift) + pose.t - c) + c;
-                    v = Vec3(q.x(), q.y(), v.z());
+                // m = M v + b for the swatch ring's vertices v (xy), resized by f about its area
+                // centroid as resized_in_frame does.
+                const Eigen::Matrix2d M0 = T * pose.A;
+                const Vec2 b0 = T * (pose.A * shift + pose.t - c) + c;
+                Eigen::Matrix2d M;
+                Vec2 b;
+                auto pose_at = [&](double f) {
+                    M = f * M0;
+                    b = f * b0 + (1.0 - f) * (M0 * src_centroid.head<2>() + b0);
+                    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                        const Vec2 q = M * src.vertices[v].head<2>() + b;
+                        m.vertices[v] = Vec3(q.x(), q.y(), src.vertices[v].z());
+                    }
+                };
+                if (clash) {
+                    // Tested quickly first, at the swatch size while the map's scale here is not
+                    // known yet (embed_sized changes it only beyond kLatticeSizeDrift).
+                    pose_at((fit > 0.0 ? fit : 1.0) * shrink);
+                    if ((*clash)(m, j, M, b)) continue;
                 }
+                if (clash && ++hole_tries_ > hole_budget()) return false;  // fill_ring_holes stops
                 if (fit == 0.0) {
+                    pose_at(1.0);
                     if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) {
                         *lasting = false;  // off this patch: another frame may hold it
                         return false;
                     }
+                    if (fit_io) *fit_io = fit;
+                    if (clash && fit != 1.0) {
+                        pose_at(fit * shrink);
+                        if ((*clash)(m, j, M, b)) continue;
+                    }
                 }
-                if (fit * shrink != 1.0) m = resized_in_frame(m, fit * shrink);
+                pose_at(fit * shrink);
                 if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, anchors, embedded)) {
                     *lasting = false;
                     continue;
@@ -2075,7 +2337,7 @@ private:
                     continue;
                 }
                 add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
-                ++surface_.elements_mended;
+                ++surface_.elements_mended;  // ring_holes_filled counts the hole fillers among them
                 // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
                 *placed = {j, T * pose.A, T * (pose.A * shift + pose.t - c) + c, 0.0};
                 return true;
@@ -2624,6 +2886,10 @@ private:
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
     std::vector<std::pair<Vec3, Vec3>> mend_failed_;  ///< slots tried in vain (mend_frame): base point, direction
     std::map<std::array<long, 3>, std::vector<std::size_t>> mend_failed_grid_;
+    std::vector<quilt::SolidGrid> solid_;  ///< swatch elements' solids (solid_of)
+    long hole_tries_ = 0, hole_budget_ = 0, hole_free_ = 0;  ///< fill_ring_holes: tries embedded, and at most (hole_budget)
+    std::vector<Vec3> hole_failed_;  ///< ring holes tried in vain (fill_ring_holes): base points
+    std::map<std::array<long, 3>, std::vector<std::size_t>> hole_failed_grid_;
     double mend_cell_ = 1.0;
     bool rings_ = false;  ///< the swatch has rings (is_ring_source): their lattices are continued and mended
     bool interlocked_ = false;  ///< ... and they interlock (chain mail): no ring may be left unlinked
