@@ -708,6 +708,83 @@ def gen_cobbles():
 
 
 # ----------------------------------------------------------------------------------------------
+# 6. scales: overlapping shingles, each laid partly over the row below
+
+def scale_part(cx, yb, width, length, thick, slope, top, dome, around, rings):
+    """A tilted plate: a half disc at its tip (y = yb) and straight sides up to yb + length. Its top
+    falls by `slope` per unit of y from `top` at the tip and is domed across by `dome`; it is
+    `thick` thick (straight down). `around` points round the outline, `rings` rings inwards."""
+    r = 0.5 * width
+    outline = []
+    for i in range(around):
+        u = i / around
+        if u < 0.5:       # the tip: a half circle
+            th = math.pi + u / 0.5 * math.pi
+            outline.append((cx + r * math.cos(th), yb + r + r * math.sin(th)))
+        elif u < 0.65:    # right side, upwards
+            outline.append((cx + r, yb + r + (u - 0.5) / 0.15 * (length - r)))
+        elif u < 0.85:    # top edge (hidden under the next row)
+            outline.append((cx + r - 2.0 * r * (u - 0.65) / 0.2, yb + length))
+        else:             # left side, downwards
+            outline.append((cx - r, yb + length - (u - 0.85) / 0.15 * (length - r)))
+    centre = (cx, yb + 0.55 * length)
+
+    def z_top(x, y):
+        d = (x - cx) / r
+        return top - slope * (y - yb) + dome * (1.0 - d * d)
+
+    part = Part()
+    idx = {}
+    for side in (0, 1):   # 0: top surface, 1: bottom surface
+        idx[(side, 0, 0)] = part.vert((centre[0], centre[1], z_top(*centre) - side * thick))
+        for k in range(1, rings + 1):
+            f = k / rings
+            for i in range(around):
+                x = centre[0] + f * (outline[i][0] - centre[0])
+                y = centre[1] + f * (outline[i][1] - centre[1])
+                idx[(side, k, i)] = part.vert((x, y, z_top(x, y) - side * thick))
+    for side in (0, 1):
+        for i in range(around):
+            j = (i + 1) % around
+            if side == 0:
+                part.tri(idx[(0, 0, 0)], idx[(0, 1, i)], idx[(0, 1, j)])
+            else:
+                part.tri(idx[(1, 0, 0)], idx[(1, 1, j)], idx[(1, 1, i)])
+            for k in range(1, rings):
+                a, b, c, d = idx[(side, k, i)], idx[(side, k + 1, i)], idx[(side, k + 1, j)], idx[(side, k, j)]
+                if side == 0:
+                    part.quad(a, b, c, d)
+                else:
+                    part.quad(a, d, c, b)
+    for i in range(around):
+        j = (i + 1) % around
+        part.quad(idx[(0, rings, i)], idx[(1, rings, i)], idx[(1, rings, j)], idx[(0, rings, j)])
+    return part
+
+
+def gen_scales():
+    seed = 11
+    rng = random.Random(seed)
+    P = dict(rows=8, cols=8, pitch_x=1.25, pitch_y=1.25, width=1.15, length=2.0, thick=0.1,
+             slope=0.3, dome=0.075, size_variation=0.03, around=24, rings=3)
+    parts = []
+    for row in range(P['rows']):
+        for col in range(P['cols']):
+            cx = (col + (0.5 if row % 2 else 0.0) + 0.5) * P['pitch_x']
+            grow = 1.0 + rng.uniform(-1, 1) * P['size_variation']
+            parts.append(scale_part(cx, row * P['pitch_y'], P['width'] * grow, P['length'] * grow,
+                                    P['thick'], P['slope'], 0.75, P['dome'], P['around'], P['rings']))
+    normalise_placement(parts)
+    desc = ['%d overlapping scales (shingles) in %d rows of %d, each row shifted by half a pitch.'
+            % (len(parts), P['rows'], P['cols']),
+            'Each scale is a tilted plate with a rounded tip, domed across; its top half lies under',
+            'the tips of the next row, %.2f above it, so the elements overlap in projection but never'
+            % (P['slope'] * P['pitch_y'] - P['thick']),
+            'touch.']
+    return parts, seed, P, desc
+
+
+# ----------------------------------------------------------------------------------------------
 
 SWATCHES = [
     ('weave', gen_weave),
@@ -715,6 +792,7 @@ SWATCHES = [
     ('pebbles', gen_pebbles),
     ('rivets', gen_rivets),
     ('cobbles', gen_cobbles),
+    ('scales', gen_scales),
 ]
 
 

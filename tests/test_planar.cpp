@@ -167,13 +167,42 @@ TEST_P(PlanarDensity, DensityMatchesSwatch) {
 
 auto param_name = [](const auto& info) { return std::get<0>(info.param) + "_seed" + std::to_string(std::get<1>(info.param)); };
 INSTANTIATE_TEST_SUITE_P(BundledSwatches, PlanarDensity,
-                         ::testing::Combine(::testing::Values("pebbles", "rivets", "chainmail", "weave", "cobbles"), ::testing::Values(1, 2, 3)),
+                         ::testing::Combine(::testing::Values("pebbles", "rivets", "chainmail", "weave", "cobbles", "scales"), ::testing::Values(1, 2, 3)),
                          param_name);
 
 INSTANTIATE_TEST_SUITE_P(BundledSwatches, PlanarQuilt,
-                         ::testing::Combine(::testing::Values("weave", "chainmail", "pebbles", "rivets", "cobbles"),
+                         ::testing::Combine(::testing::Values("weave", "chainmail", "pebbles", "rivets", "cobbles", "scales"),
                                             ::testing::Values(1, 2, 3)),
                          param_name);
+
+// Overlapping scales (swatches/scales.obj: each scale's top lies under the next row's tips) overlap
+// in projection and keep apart in 3D only. The rules that clear blobs by their xy footprints
+// (squeezing a loser clear of its neighbours, growing stones into joints) must leave them alone:
+// before the swatch was known as layered, scales came out squeezed to slivers (down to 2/3 of
+// their width) and stretched into "joints".
+TEST(PlanarScales, LayeredScalesStayWhole) {
+    const QuiltRun run = quilt("scales", 1);
+    const mq::QuiltResult& r = run.result;
+    const auto swatch = mq::test::split_elements(run.swatch, mq::connected_components(run.swatch));
+    double narrowest = 1e300, widest = 0.0;
+    for (const Mesh& e : swatch) {
+        const mq::Vec3 d = mq::bounding_box(e).size();
+        narrowest = std::min(narrowest, std::min(d.x(), d.y()));
+        widest = std::max(widest, std::max(d.x(), d.y()));
+    }
+    EXPECT_EQ(r.report.joints_closed, 0);
+    EXPECT_EQ(r.report.elements_squeezed, 0);
+    int thin = 0, counted = 0;
+    for (const Mesh& e : mq::test::split_elements(r.mesh, r.element_of_face)) {
+        const mq::Vec3 d = mq::bounding_box(e).size();
+        // Elements cut by the output's border are whole too (elements are never cut), so all count.
+        ++counted;
+        if (std::min(d.x(), d.y()) < 0.8 * narrowest) ++thin;
+        EXPECT_LT(std::max(d.x(), d.y()), 1.1 * widest);
+    }
+    EXPECT_GT(counted, 100);
+    EXPECT_EQ(thin, 0) << thin << " of " << counted << " scales narrower than 0.8 of the swatch's narrowest";
+}
 
 // Long elements continue across patches (three seeds): the weave's output
 // threads are longer than the swatch.

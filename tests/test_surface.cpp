@@ -308,7 +308,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BaseCase{"torus_weave", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "weave", 0.2, false},
                       BaseCase{"eight_weave", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "weave", 0.2, false},
                       BaseCase{"eight_pebbles", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "pebbles", 0.2},
-                      BaseCase{"torus_cobbles", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "cobbles", 0.2}),
+                      BaseCase{"torus_cobbles", [] { return shapes::torus(2.0, 0.7, 48, 24); }, "cobbles", 0.2},
+                      BaseCase{"eight_scales", [] { return mq::read_mesh(surface_data_path("eight.obj")); }, "scales", 0.2}),
     [](const auto& info) { return info.param.name; });
 
 // ---------------------------------------------------------------------------------------------

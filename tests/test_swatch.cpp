@@ -3,6 +3,7 @@
 // The swatch as the synthesis sees it (quilt/swatch.h): elements, their genus, the gaps between them.
 
 #include "meshquilt/io.h"
+#include "quilt/kernel.h"
 #include "quilt/swatch.h"
 #include "support/paths.h"
 #include "support/shapes.h"
@@ -41,6 +42,26 @@ TEST(SwatchData, KnowsRingsAndGaps) {
     for (Vec3& v : overlapping.vertices) v.z() *= 0.2;
     const auto touching = mq::quilt::prepare_swatch(shapes::concat(two, overlapping));
     EXPECT_EQ(touching.near_gap, 0.0);
+}
+
+// Layered swatches (quilt::SwatchData::layered): elements that overlap in projection and keep apart
+// in 3D only, as overlapping scales do. Only the scales are layered among the bundled swatches; the
+// chain mail's rings overlap in projection too, but they are rings, not blobs.
+TEST(SwatchData, KnowsLayeredSwatches) {
+    for (const char* name : {"weave", "chainmail", "pebbles", "rivets", "cobbles"})
+        EXPECT_FALSE(mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name))).layered) << name;
+    const auto scales = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path("scales")));
+    EXPECT_TRUE(scales.elements_disjoint);
+    EXPECT_TRUE(scales.layered);
+    // Two flat plates, the second lifted over the first's far half: layered; side by side: not.
+    Mesh plate = shapes::cube(1.0);
+    for (Vec3& v : plate.vertices) v.z() *= 0.1;
+    const Mesh over = shapes::translated(plate, Vec3(0.5, 0.0, 0.3));
+    EXPECT_TRUE(mq::quilt::prepare_swatch(shapes::concat(plate, over)).layered);
+    const Mesh beside = shapes::translated(plate, Vec3(1.2, 0.0, 0.0));
+    EXPECT_FALSE(mq::quilt::prepare_swatch(shapes::concat(plate, beside)).layered);
+    EXPECT_NEAR(mq::quilt::projected_overlap_share(plate, over), 0.5, 0.05);
+    EXPECT_EQ(mq::quilt::projected_overlap_share(plate, beside), 0.0);
 }
 
 namespace {

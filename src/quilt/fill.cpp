@@ -167,7 +167,7 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
     s.projected = projected;
     s.sparse = sparse;
     s.min_area = min_area;
-    if (!sw.elements_disjoint || !(sw.near_gap > 0.0)) return s;
+    if (!sw.elements_disjoint || !(sw.near_gap > 0.0) || sw.layered) return s;
     double narrowest = 1e300;
     for (std::size_t e = 0; e < sw.elements.size(); ++e) {
         const Mesh& m = sw.elements[e];
@@ -307,7 +307,7 @@ double side_clearance(const std::vector<Vec2>& hull, std::size_t edge, const std
 
 JointSetup prepare_joints(const SwatchData& sw) {
     JointSetup s;
-    if (!sw.elements_disjoint || !(sw.near_gap > 0.0)) return s;
+    if (!sw.elements_disjoint || !(sw.near_gap > 0.0) || sw.layered) return s;
     std::vector<std::vector<Vec2>> hulls;
     for (const Mesh& m : sw.elements) hulls.push_back(xy_hull(m));
     std::vector<std::size_t> blobs;

@@ -104,8 +104,8 @@ struct FillSetup {
     bool projected = false;
 };
 
-/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
-/// intersect; `min_pixel` bounds the raster's size for large outputs, `sparse`, `min_area` and
+/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread), its elements
+/// intersect, or it is layered (SwatchData::layered: footprints say nothing about room there); `min_pixel` bounds the raster's size for large outputs, `sparse`, `min_area` and
 /// `projected` see FillSetup.
 FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse, double min_area, bool projected = false);
 
@@ -150,7 +150,7 @@ inline constexpr double kPavingJoint = 0.2;
 inline constexpr double kMaxGrowth = 1.3;
 
 /// Not a paving (nothing to close) unless the swatch's elements are disjoint blobs with at least 8
-/// measured sides.
+/// measured sides, and not layered (SwatchData::layered: overlapping scales have no joints).
 JointSetup prepare_joints(const SwatchData& swatch);
 
 /// Grows the sides of blob `m` (xy hull) that face joints wider than `setup.wide` and narrower than

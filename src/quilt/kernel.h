@@ -29,6 +29,10 @@ struct KernelParams {
     /// still handed back as an addition (a remnant: it overlaps the winner), for a caller that cuts
     /// threads where they collide (the surface stage, quilt/trim.h). Off: the loser is dropped.
     bool thread_remnants = false;
+    /// Beyond the paper: the swatch is layered (SwatchData::layered: overlapping scales). A stitch of
+    /// two compact elements must then not reach beyond both halves' elements by more than
+    /// kMaxStitchReach (partners offset by a row would join into one long scale).
+    bool layered = false;
 };
 
 /// An element already in the output, in the kernel's frame. `id` is the caller's handle.
@@ -107,6 +111,10 @@ bool squeeze_clear(Mesh& m, const std::vector<std::vector<Vec2>>& other_hulls, d
 /// negative: outwards, a growth), with the smooth monotone map of squeeze_clear; the side at `hi`
 /// stays. `lo` and `hi` bound `m` along the axis; |depth| < (hi - lo) / 2.
 void push_side(Mesh& m, const Vec2& axis, double lo, double hi, double depth);
+
+/// The share of the xy projection of `a` that the projection of `b` covers, counted on a grid of
+/// `resolution` pixels along the longer side of a's box (0 when their boxes are apart).
+double projected_overlap_share(const Mesh& a, const Mesh& b, int resolution = 96);
 
 /// Area of a simple polygon.
 double polygon_area(const std::vector<Vec2>& polygon);

@@ -154,7 +154,9 @@ public:
         params_.metric.lambda = opt_.lambda;
         params_.metric.unit = sw_.mean_edge;
         params_.mu = opt_.mu;
-        params_.blob_gap = sw_.elements_disjoint ? sw_.near_gap : 0.0;
+        // A layered swatch's blobs overlap in projection: no squeeze by footprints (Swatch::layered).
+        params_.blob_gap = sw_.elements_disjoint && !sw_.layered ? sw_.near_gap : 0.0;
+        params_.layered = sw_.layered;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare"] += seconds_since(t0);
     }

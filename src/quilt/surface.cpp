@@ -283,6 +283,7 @@ public:
         params_.metric.unit = sw_.mean_edge;
         params_.mu = opt_.mu;
         params_.thread_remnants = true;
+        params_.layered = sw_.layered;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare swatch"] += seconds_since(t0);
         t0 = Clock::now();

@@ -106,6 +106,18 @@ SwatchData prepare_swatch(const Mesh& input) {
                 if (i != j) gap[i] = std::min(gap[i], quilt::element_gap(s.elements[i], box[i], s.elements[j], cap));
         std::sort(gap.begin(), gap.end());
         s.near_gap = gap[static_cast<std::size_t>(0.05 * static_cast<double>(gap.size() - 1))];
+        // Layered: blobs whose projections lie partly under a neighbour's (scales, shingles).
+        std::size_t blobs = 0, overlapped = 0;
+        for (std::size_t i = 0; i < s.elements.size(); ++i) {
+            if (!s.element_closed[i] || s.element_genus[i] != 0 || quilt::is_elongated(s.elements[i])) continue;
+            ++blobs;
+            for (std::size_t j = 0; j < s.elements.size(); ++j)
+                if (i != j && quilt::projected_overlap_share(s.elements[i], s.elements[j]) >= kLayeredOverlap) {
+                    ++overlapped;
+                    break;
+                }
+        }
+        s.layered = blobs >= 2 && static_cast<double>(overlapped) >= kLayeredShare * static_cast<double>(blobs);
     }
     return s;
 }

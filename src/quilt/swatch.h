@@ -28,10 +28,20 @@ struct SwatchData {
     /// neighbour (vertex to vertex, looked for up to the median element's diagonal): how close the
     /// swatch lets its elements come. 0 when elements intersect or there is only one.
     double near_gap = 0.0;
+    /// The swatch's blobs overlap one another in xy projection, as scales and shingles do (each
+    /// laid partly over its neighbour): at least kLayeredShare of its blobs (closed genus-0 elements
+    /// that are not threads) have kLayeredOverlap or more of their projection under another
+    /// element's. Rules that judge clearance by xy footprints (squeezing a blob clear of others,
+    /// growing blobs into joints, filling bald spots by footprints) do not hold for such a
+    /// swatch: its elements keep apart in 3D only.
+    bool layered = false;
     /// Genus of each element (closed elements; 0 for open ones): a ring (genus >= 1) can interlock
     /// with its neighbours, a blob cannot.
     std::vector<int> element_genus;
 };
+
+inline constexpr double kLayeredOverlap = 0.05;
+inline constexpr double kLayeredShare = 0.25;
 
 SwatchData prepare_swatch(const Mesh& input);
 
