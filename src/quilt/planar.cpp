@@ -50,6 +50,10 @@ using quilt::kDensityInset;
 using quilt::kMaxOutputFaces;
 using quilt::seconds_since;
 
+/// Below this share of the swatch's density (the report's window densities) the result carries a
+/// warning. Every bundled swatch reaches 0.91 or more.
+constexpr double kSparseOutput = 0.75;
+
 /// Output grid with a margin of cells around the footprint, so that placements near the border
 /// keep track of what they cover.
 struct Grid {
@@ -513,6 +517,26 @@ private:
         result.report = r;
         if (r.elements_removed > 0)
             result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
+        // A sparse output is no silent result: say how sparse, and what the merges said. (A swatch
+        // that is one large connected net, such as a grid of bars, cannot be merged where two
+        // placements overlap; each placement's copy then stands whole or not at all.)
+        if (r.swatch_density > 0.0 && r.output_density < kSparseOutput * r.swatch_density) {
+            std::string most;
+            int most_n = 0;
+            for (const auto& [why, n] : failure_reasons_)
+                if (n > most_n) {
+                    most = why;
+                    most_n = n;
+                }
+            std::string text = "the output is sparse: it holds " + num(r.output_density / r.swatch_density) + " of the swatch's density";
+            if (r.stitch_failures > 0)
+                text += "; " + std::to_string(r.stitch_failures) + " merge(s) of overlapping elements failed (most often: " + most +
+                        "), and an element that cannot be merged with its neighbour leaves bare ground";
+            if (sw_.elements.size() <= 4 && !sw_.elements.empty())
+                text += "; the swatch has only " + std::to_string(sw_.elements.size()) +
+                        " element(s): a large connected element (a net or lattice) can only be placed whole";
+            result.warnings.push_back(text);
+        }
     }
 
     PlanarQuiltOptions opt_;
