@@ -167,7 +167,8 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
     s.projected = projected;
     s.sparse = sparse;
     s.min_area = min_area;
-    if (!sw.elements_disjoint || !(sw.near_gap > 0.0) || sw.layered) return s;
+    s.layered = sw.layered;
+    if (!sw.elements_disjoint || !(sw.near_gap > 0.0)) return s;
     double narrowest = 1e300;
     for (std::size_t e = 0; e < sw.elements.size(); ++e) {
         const Mesh& m = sw.elements[e];
@@ -244,7 +245,7 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
         for (const FillSetup::Shape& s : setup.shapes) {
             if (s.area <= best_area) break;
             Mesh placed = translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
-            if (!squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
+            if (!setup.layered && !squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
             const double a = mesh_area(placed);
             if (a <= best_area || a < setup.min_area * s.swatch_area || a < setup.area_floor || !fits(placed, s.source)) continue;
             best = std::move(placed);

@@ -102,10 +102,13 @@ struct FillSetup {
     /// Densities by projected area (see Coverage), the swatch's too: the surface stage, whose lowered
     /// shell flattens elements.
     bool projected = false;
+    /// The swatch is layered (SwatchData::layered): a shape goes in as it is, without a squeeze by
+    /// footprints, when `fits` (the 3D test) takes it.
+    bool layered = false;
 };
 
-/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread), its elements
-/// intersect, or it is layered (SwatchData::layered: footprints say nothing about room there); `min_pixel` bounds the raster's size for large outputs, `sparse`, `min_area` and
+/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
+/// intersect (a layered swatch's shapes go in without squeezes: FillSetup::layered); `min_pixel` bounds the raster's size for large outputs, `sparse`, `min_area` and
 /// `projected` see FillSetup.
 FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse, double min_area, bool projected = false);
 

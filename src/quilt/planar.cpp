@@ -421,7 +421,9 @@ private:
                     hulls.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(id)].mesh));
                 return hulls;
             },
-            [&](const Mesh& m, int) { return !collider_.collides(m); }, [&](const Mesh& m, int source) { add_element(m, source); });
+            // A layered swatch's shape comes unsqueezed (FillSetup::layered): it must keep the clearance itself.
+            [&](const Mesh& m, int source) { return !collider_.collides(m) && (!sw_.layered || keeps_gap(m, source)); },
+            [&](const Mesh& m, int source) { add_element(m, source); });
         stage_seconds_["bald spots"] += seconds_since(t0);
     }
 
