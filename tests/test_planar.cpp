@@ -8,6 +8,7 @@
 #include "meshquilt/quilt.h"
 #include "support/checkers.h"
 #include "support/paths.h"
+#include "support/shapes.h"
 #include "support/expect_error.h"
 
 #include <gtest/gtest.h>
@@ -206,48 +207,13 @@ TEST(PlanarScales, LayeredScalesStayWhole) {
     EXPECT_EQ(thin, 0) << thin << " of " << counted << " scales narrower than 0.8 of the swatch's narrowest";
 }
 
-namespace {
-/// A square grid of bars as one closed element (genus n^2): the cells of a raster of side `cell`
-/// that lie on a bar, extruded to height `h` (top, bottom and the walls between filled and empty
-/// cells, vertices shared).
-Mesh grid_net(int n, double pitch, double bar, double h, double cell) {
-    const int N = static_cast<int>(std::lround((n * pitch + bar) / cell));
-    auto filled = [&](int i, int j) {
-        if (i < 0 || j < 0 || i >= N || j >= N) return false;
-        const double x = (i + 0.5) * cell, y = (j + 0.5) * cell;
-        return std::fmod(x, pitch) < bar || std::fmod(y, pitch) < bar;
-    };
-    Mesh m;
-    std::map<std::tuple<int, int, int>, int> index;
-    auto v = [&](int i, int j, int k) {
-        auto [it, fresh] = index.emplace(std::make_tuple(i, j, k), static_cast<int>(m.vertices.size()));
-        if (fresh) m.vertices.emplace_back(i * cell, j * cell, k * h);
-        return it->second;
-    };
-    auto quad = [&](int a, int b, int c, int d) {
-        m.faces.push_back({a, b, c});
-        m.faces.push_back({a, c, d});
-    };
-    for (int i = 0; i < N; ++i)
-        for (int j = 0; j < N; ++j) {
-            if (!filled(i, j)) continue;
-            quad(v(i, j, 1), v(i + 1, j, 1), v(i + 1, j + 1, 1), v(i, j + 1, 1));
-            quad(v(i, j, 0), v(i, j + 1, 0), v(i + 1, j + 1, 0), v(i + 1, j, 0));
-            if (!filled(i - 1, j)) quad(v(i, j, 0), v(i, j, 1), v(i, j + 1, 1), v(i, j + 1, 0));
-            if (!filled(i + 1, j)) quad(v(i + 1, j, 0), v(i + 1, j + 1, 0), v(i + 1, j + 1, 1), v(i + 1, j, 1));
-            if (!filled(i, j - 1)) quad(v(i, j, 0), v(i + 1, j, 0), v(i + 1, j, 1), v(i, j, 1));
-            if (!filled(i, j + 1)) quad(v(i, j + 1, 0), v(i, j + 1, 1), v(i + 1, j + 1, 1), v(i + 1, j + 1, 0));
-        }
-    return m;
-}
-}  // namespace
 
 // A swatch that is one connected net (a grid of bars, genus 64) cannot be merged where two
 // placements overlap (the cuts through its many bars do not pair up), so each placement's copy
 // stands whole or not at all and the output is sparse (0.44-0.68 of the swatch's density, seeds
 // 1-3). That is a known limit (docs/planar.md); what is tested is that it is not silent.
 TEST(PlanarQuiltWarnings, ASparseOutputSaysSoAndWhy) {
-    const Mesh net = grid_net(8, 1.25, 0.25, 0.3, 0.125);
+    const Mesh net = mq::test::shapes::grid_net(8, 1.25, 0.25, 0.3, 0.125);
     const mq::MeshAnalysis a = mq::analyse(net);
     ASSERT_EQ(a.boundary_edges, 0);
     ASSERT_EQ(a.non_manifold_edges, 0);

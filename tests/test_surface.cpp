@@ -772,6 +772,28 @@ TEST(SurfaceErrors, ASwatchTooLargeForTheBaseIsAnErrorOrAWarning) {
         << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());
 }
 
+// A swatch that is one connected net (a grid of bars, genus 64) can only be placed whole: where
+// two placements overlap they cannot be merged. Its sparse decoration says so, and does not advise a
+// smaller scale, which covers less, not more (the eight, seed 1: thinnest region 0.35 at scale
+// 0.2, 0.08 at 0.08).
+TEST(SurfaceErrors, ASparseNetSaysItCanOnlyBePlacedWhole) {
+    mq::SurfaceQuiltOptions o;
+    o.scale = 0.2;
+    o.seed = 1;
+    const auto r = mq::quilt_surface(mq::read_mesh(surface_data_path("eight.obj")), shapes::grid_net(8, 1.25, 0.25, 0.3, 0.125), o);
+    EXPECT_GT(r.report.elements, 0);
+    ASSERT_GT(r.surface.regions, 0);
+    EXPECT_LT(r.surface.region_density_min, 0.5);
+    int net = 0, scale = 0;
+    for (const std::string& w : r.warnings) {
+        net += w.find("decoration is sparse") != std::string::npos && w.find("net or lattice can only be placed whole") != std::string::npos &&
+               w.find("does not cover more") != std::string::npos;
+        scale += w.find("covers more fully") != std::string::npos;
+    }
+    EXPECT_EQ(net, 1) << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());
+    EXPECT_EQ(scale, 0);
+}
+
 TEST(SurfaceErrors, BadBasesAndOptionsGiveClearErrors) {
     using mq::test::throws_with;
     const Mesh sw = mq::read_mesh(swatch_path("pebbles"));

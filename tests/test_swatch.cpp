@@ -64,6 +64,21 @@ TEST(SwatchData, KnowsLayeredSwatches) {
     EXPECT_EQ(mq::quilt::projected_overlap_share(plate, beside), 0.0);
 }
 
+// A swatch that is one connected net (a grid of bars) is known by its largest element covering
+// most of the swatch's footprint; the bundled swatches' elements (rings, threads, blobs, scales)
+// cover at most a thread's share.
+TEST(SwatchData, KnowsANetSpansTheSwatch) {
+    for (const char* name : {"weave", "chainmail", "pebbles", "rivets", "cobbles", "scales"}) {
+        const auto sw = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name)));
+        EXPECT_GT(sw.largest_element_cover, 0.0) << name;
+        EXPECT_FALSE(sw.spans_swatch()) << name << ": its largest element covers " << sw.largest_element_cover;
+    }
+    const auto net = mq::quilt::prepare_swatch(shapes::grid_net(8, 1.25, 0.25, 0.3, 0.125));
+    ASSERT_EQ(net.elements.size(), 1u);
+    EXPECT_NEAR(net.largest_element_cover, 1.0, 1e-9);
+    EXPECT_TRUE(net.spans_swatch());
+}
+
 namespace {
 std::vector<char> rings_of(const mq::quilt::SwatchData& sw) {
     std::vector<char> ring(sw.elements.size());

@@ -534,9 +534,10 @@ private:
             if (r.stitch_failures > 0)
                 text += "; " + std::to_string(r.stitch_failures) + " merge(s) of overlapping elements failed (most often: " + most +
                         "), and an element that cannot be merged with its neighbour leaves bare ground";
-            if (sw_.elements.size() <= 4 && !sw_.elements.empty())
-                text += "; the swatch has only " + std::to_string(sw_.elements.size()) +
-                        " element(s): a large connected element (a net or lattice) can only be placed whole";
+            if (sw_.spans_swatch())
+                text += "; the swatch's largest element covers " + num(sw_.largest_element_cover) +
+                        " of its footprint: a connected net or lattice can only be placed whole (a swatch of separate elements, such as "
+                        "threads, rings or tiles, covers fully)";
             result.warnings.push_back(text);
         }
     }

@@ -2814,7 +2814,13 @@ private:
                                " base units, the base's diagonal " + num(diagonal_) +
                                "): every placement folded, collided or reached off its patch where the base curves more tightly than the elements are "
                                "wide; choose a smaller --scale or --swatch-size");
-        if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning)
+        if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning && sw_.spans_swatch())
+            warnings_.push_back("the decoration is sparse: its thinnest region holds " + num(surface_.region_density_min) +
+                                " of the swatch's density, and the swatch's largest element covers " + num(sw_.largest_element_cover) +
+                                " of its footprint: a connected net or lattice can only be placed whole, and two placements that overlap "
+                                "cannot be merged, so a smaller --scale does not cover more (a swatch of separate elements, such as threads, "
+                                "rings or tiles, covers fully)");
+        else if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning)
             warnings_.push_back("the decoration is sparse: its thinnest region holds " + num(surface_.region_density_min) +
                                 " of the swatch's density (its largest element is " + num(element_diag_ * scale_) +
                                 " base units across, and few fit where the base's features are not much larger); a smaller --scale or --swatch-size covers more fully");

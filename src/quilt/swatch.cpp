@@ -84,6 +84,11 @@ SwatchData prepare_swatch(const Mesh& input) {
         s.elements.push_back(std::move(e));
     }
     s.elements_disjoint = intersecting_element_pairs(s.mesh, comp, 1).empty();
+    const double swatch_xy = std::max(s.box.size().x() * s.box.size().y(), 1e-300);
+    for (const Mesh& e : s.elements) {
+        const Box3 b = bounding_box(e);
+        s.largest_element_cover = std::max(s.largest_element_cover, b.size().x() * b.size().y() / swatch_xy);
+    }
     double len = 0.0;
     for (const Tri& f : s.mesh.faces)
         for (int k = 0; k < 3; ++k) len += (s.mesh.vertices[f[k]] - s.mesh.vertices[f[(k + 1) % 3]]).norm();

@@ -38,6 +38,13 @@ struct SwatchData {
     /// Genus of each element (closed elements; 0 for open ones): a ring (genus >= 1) can interlock
     /// with its neighbours, a blob cannot.
     std::vector<int> element_genus;
+    /// The largest element's xy bounding box over the swatch's: near 1 for a swatch that is one
+    /// connected net or lattice (a grid of bars), about a thread's width over the swatch's for a
+    /// weave. Such an element can only be placed whole (where two placements overlap, the cuts
+    /// through its many bars do not pair up), so a smaller scale does not cover more.
+    double largest_element_cover = 0.0;
+    bool spans_swatch() const { return largest_element_cover >= kSpanningCover; }
+    static constexpr double kSpanningCover = 0.5;
 };
 
 inline constexpr double kLayeredOverlap = 0.05;

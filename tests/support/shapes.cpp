@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <set>
 #include <stdexcept>
 
@@ -113,6 +114,37 @@ Mesh double_torus() {
         for (int y = 0; y < 3; ++y)
             if (!(y == 1 && (x == 1 || x == 3))) cells.push_back({x, y, 0});
     return voxels(cells);
+}
+
+Mesh grid_net(int n, double pitch, double bar, double h, double cell) {
+    const int N = static_cast<int>(std::lround((n * pitch + bar) / cell));
+    auto filled = [&](int i, int j) {
+        if (i < 0 || j < 0 || i >= N || j >= N) return false;
+        const double x = (i + 0.5) * cell, y = (j + 0.5) * cell;
+        return std::fmod(x, pitch) < bar || std::fmod(y, pitch) < bar;
+    };
+    Mesh m;
+    std::map<std::tuple<int, int, int>, int> index;
+    auto v = [&](int i, int j, int k) {
+        auto [it, fresh] = index.emplace(std::make_tuple(i, j, k), static_cast<int>(m.vertices.size()));
+        if (fresh) m.vertices.emplace_back(i * cell, j * cell, k * h);
+        return it->second;
+    };
+    auto quad = [&](int a, int b, int c, int d) {
+        m.faces.push_back({a, b, c});
+        m.faces.push_back({a, c, d});
+    };
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) {
+            if (!filled(i, j)) continue;
+            quad(v(i, j, 1), v(i + 1, j, 1), v(i + 1, j + 1, 1), v(i, j + 1, 1));
+            quad(v(i, j, 0), v(i, j + 1, 0), v(i + 1, j + 1, 0), v(i + 1, j, 0));
+            if (!filled(i - 1, j)) quad(v(i, j, 0), v(i, j, 1), v(i, j + 1, 1), v(i, j + 1, 0));
+            if (!filled(i + 1, j)) quad(v(i + 1, j, 0), v(i + 1, j + 1, 0), v(i + 1, j + 1, 1), v(i + 1, j, 1));
+            if (!filled(i, j - 1)) quad(v(i, j, 0), v(i + 1, j, 0), v(i + 1, j, 1), v(i, j, 1));
+            if (!filled(i, j + 1)) quad(v(i, j + 1, 0), v(i, j + 1, 1), v(i + 1, j + 1, 1), v(i + 1, j + 1, 0));
+        }
+    return m;
 }
 
 Mesh concat(const Mesh& a, const Mesh& b) {

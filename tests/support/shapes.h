@@ -36,6 +36,11 @@ Mesh voxels(const std::vector<std::array<int, 3>>& cells);
 /// A slab of 5 x 3 x 1 voxels with two square holes through it: a closed surface of genus 2.
 Mesh double_torus();
 
+/// A square grid of bars as one closed element (genus n^2): the cells of a raster of side `cell`
+/// that lie on a bar, extruded to height `h` (top, bottom and the walls between filled and empty
+/// cells, vertices shared).
+Mesh grid_net(int n, double pitch, double bar, double h, double cell);
+
 /// Two copies of `a` and `b` in one mesh (b's indices shifted).
 Mesh concat(const Mesh& a, const Mesh& b);
 
