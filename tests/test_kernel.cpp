@@ -4,6 +4,7 @@
 // away from the contested ground stay exactly where they were, so the threads crossing them there
 // stay clear.
 
+#include "core/intersect.h"
 #include "meshquilt/analysis.h"
 #include "quilt/deform.h"
 #include "quilt/kernel.h"
@@ -124,4 +125,49 @@ TEST(Correspondences, RingsPairOnlyWithRingsOfTheirSize) {
 
     const mq::quilt::PatchPlan beside = mq::quilt::plan_patch(old, {{0, twin}}, ov, params);
     EXPECT_EQ(beside.correspondences, 1);
+}
+
+TEST(Merging, ALayeredLoserStaysBesideTheWinnerWhenItKeepsClear) {
+    // Two scales (closed slabs 2 x 1.5 x 0.2, blobs) of a layered swatch, the new one lying over the
+    // old one's back half as a shingle does: their stitch would make one scale half as long again,
+    // so one of them wins. With a layer gap the loser is handed back whole as an addition when it
+    // keeps that gap from the winner in 3D; laid through the winner, or without the gap, it is dropped.
+    auto slab = [](const Vec3& offset) {
+        std::vector<std::array<int, 3>> cells;
+        for (int i = 0; i < 8; ++i)
+            for (int j = 0; j < 6; ++j) cells.push_back({i, j, 0});
+        Mesh m = shapes::voxels(cells);
+        for (Vec3& v : m.vertices) v = Vec3(0.25 * v.x(), 0.25 * v.y(), 0.2 * v.z()) + offset;
+        return m;
+    };
+    const Mesh under = slab(Vec3(0.0, 0.0, 0.0));
+    mq::quilt::Overlap ov;
+    ov.old_side = [](double x, double) { return x < 1.5; };
+    ov.new_side = [](double x, double) { return x >= 1.5; };
+    mq::quilt::KernelParams params;
+    params.metric.unit = 0.25;
+    params.layered = true;
+    const std::vector<mq::quilt::OldElement> old{{0, under, 0}};
+    auto losers = [&](const Mesh& fresh, double gap) {
+        params.layer_gap = gap;
+        const mq::quilt::PatchPlan plan = mq::quilt::plan_patch(old, {{0, fresh}}, ov, params);
+        EXPECT_EQ(plan.correspondences, 1);
+        std::vector<Mesh> kept;
+        for (std::size_t k = plan.changes.size() - static_cast<std::size_t>(plan.squeezed); k < plan.changes.size(); ++k) {
+            EXPECT_EQ(plan.changes[k].kind, mq::quilt::PatchPlan::Change::Added);
+            kept.push_back(plan.changes[k].mesh);
+        }
+        return kept;
+    };
+
+    const Mesh over = slab(Vec3(1.0, 0.0, 0.3));  // 0.1 above the old scale's top
+    const std::vector<Mesh> kept = losers(over, 0.05);
+    ASSERT_EQ(kept.size(), 1u);
+    // Whole and unmoved: it is one of the two scales as they were.
+    EXPECT_TRUE(kept[0].vertices == under.vertices || kept[0].vertices == over.vertices);
+    EXPECT_FALSE(mq::meshes_intersect(kept[0], kept[0].vertices == under.vertices ? over : under));
+
+    EXPECT_TRUE(losers(over, 0.0).empty());                          // off: dropped, as in the paper
+    EXPECT_TRUE(losers(over, 0.2).empty());                          // closer than the gap
+    EXPECT_TRUE(losers(slab(Vec3(1.0, 0.0, 0.1)), 0.05).empty());    // through the winner
 }

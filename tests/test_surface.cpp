@@ -287,6 +287,14 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     // Overlapping scales (a layered swatch) fill bald spots by the 3D test alone (no footprint
     // squeeze): 0.870-0.967 without, 0.920-0.975 with, on the eight.
     if (c.swatch == "scales") EXPECT_GT(run.r.report.bald_spots_filled, 0);
+    // Lattice slots left empty after the last patch are mended for rings and for a layered
+    // swatch's blobs (scales lie in rows); other blobs fill bald spots instead.
+    if (c.swatch == "scales") EXPECT_GT(run.r.surface.elements_mended, 0);
+    // ... and a layered swatch's merge losers that keep clear of their winners in 3D stay whole
+    // beside them (quilt::KernelParams::layer_gap); no other swatch has such losers.
+    if (c.swatch == "scales") EXPECT_GT(run.r.report.losers_kept, 0);
+    else EXPECT_EQ(run.r.report.losers_kept, 0);
+    if (c.swatch == "rivets" || c.swatch == "pebbles" || c.swatch == "cobbles") EXPECT_EQ(run.r.surface.elements_mended, 0);
     const auto [lo, hi] = region_density(run);
     RecordProperty("density_min", std::to_string(lo));
     RecordProperty("density_max", std::to_string(hi));

@@ -93,7 +93,7 @@ struct SurfaceQualityReport {
     int threads_mended = 0;        ///< of those, laid after the last patch (gaps left or opened by later patches)
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
-    int elements_mended = 0;       ///< rings put into empty lattice slots after the last patch (seams of ring lattices)
+    int elements_mended = 0;       ///< rings (or a layered swatch's scales) put into empty lattice slots after the last patch
     int ring_holes_filled = 0;     ///< of them, rings put into holes between lattices (off every lattice's slots)
     int elements_enlarged = 0;     ///< placed elements the patch's plan left below the size floor (0.7), enlarged to 0.85 of their size
     int rings_unlinked_removed = 0;  ///< interlocking swatches: rings that linked with no other ring, removed before mending

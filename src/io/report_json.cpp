@@ -24,6 +24,7 @@ nlohmann::json planar(const QualityReport& r, double total_seconds) {
     j["collisions_avoided"] = r.collisions_avoided;
     j["elements_crowded_out"] = r.elements_crowded_out;
     j["elements_squeezed"] = r.elements_squeezed;
+    j["losers_kept"] = r.losers_kept;
     j["bald_spots_filled"] = r.bald_spots_filled;
     j["joints_closed"] = r.joints_closed;
     j["cell_size"] = r.cell_size;

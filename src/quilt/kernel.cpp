@@ -965,6 +965,21 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
                 squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
                 squeezed[k].mesh = std::move(loser);
             }
+        } else if (params.layer_gap > 0.0 && (new_lost || old_lost) && is_blob(mo) && is_blob(mi)) {
+            // A layered swatch's blobs (scales) overlap in xy, so no squeeze clears them; the loser
+            // is kept whole where it keeps the swatch's clearance in 3D from the winner, which then
+            // stays as it was too (shingles of two patches offset by part of a row overlap as the
+            // swatch's do; deformed, each would move half-way into the other). The stage tests the
+            // loser against the rest as any addition (collisions, clearance).
+            Mesh loser = new_lost ? mi : mo;
+            const Mesh& winner = new_lost ? mo : mi;
+            if (!meshes_intersect(loser, winner) && element_gap(loser, bounding_box(loser), winner, params.layer_gap) >= params.layer_gap) {
+                ch.mesh = winner;
+                ch.fallback = Mesh();
+                squeezed[k].kind = PatchPlan::Change::Added;
+                squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
+                squeezed[k].mesh = std::move(loser);
+            }
         }
         if (params.thread_remnants && new_lost && is_elongated(mo) && is_elongated(mi)) {
             remnants[k].kind = PatchPlan::Change::Added;
@@ -1041,6 +1056,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         }
         plan.changes.push_back(std::move(ch));
     }
+    plan.squeezed_from = plan.changes.size();
     for (PatchPlan::Change& ch : squeezed_additions) plan.changes.push_back(std::move(ch));
     for (PatchPlan::Change& ch : remnants)
         if (!ch.mesh.faces.empty()) plan.changes.push_back(std::move(ch));

@@ -33,6 +33,9 @@ struct KernelParams {
     /// two compact elements must then not reach beyond both halves' elements by more than
     /// kMaxStitchReach (partners offset by a row would join into one long scale).
     bool layered = false;
+    /// Beyond the paper: in a layered swatch, the clearance (3D) a merge's losing blob keeps from the
+    /// winner to be kept whole beside it (see plan_patch). 0: losers are dropped.
+    double layer_gap = 0.0;
 };
 
 /// An element already in the output, in the kernel's frame. `id` is the caller's handle.
@@ -72,7 +75,10 @@ struct PatchPlan {
     int stitch_failures = 0;
     int crowding = 0;         ///< new elements without partner left out: mostly on old ground, an old element at about the same place
     int correspondences = 0;  ///< corresponding element pairs
-    int squeezed = 0;         ///< losers of a merge kept, squeezed clear of the winner (additions at the end of `changes`)
+    /// Losers of a merge kept, squeezed clear of the winner (or, for a layered swatch, whole beside
+    /// it): the additions changes[squeezed_from, squeezed_from + squeezed). Thread remnants follow them.
+    int squeezed = 0;
+    std::size_t squeezed_from = 0;
     std::map<std::string, int> failure_reasons;  ///< why stitches failed, counted
 };
 

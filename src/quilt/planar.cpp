@@ -161,6 +161,7 @@ public:
         // A layered swatch's blobs overlap in projection: no squeeze by footprints (Swatch::layered).
         params_.blob_gap = sw_.elements_disjoint && !sw_.layered ? sw_.near_gap : 0.0;
         params_.layered = sw_.layered;
+        params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare"] += seconds_since(t0);
     }
@@ -292,10 +293,10 @@ private:
         using Kind = quilt::PatchPlan::Change::Kind;
         std::vector<const quilt::PatchPlan::Change*> pending;
         for (const auto& ch : plan.changes) pending.push_back(&ch);
-        // The plan's last `squeezed` changes are squeezed losers (see plan_patch): extras, not counted
-        // as avoided collisions when they do not fit.
-        const quilt::PatchPlan::Change* first_squeezed = plan.changes.data() + (plan.changes.size() - static_cast<std::size_t>(plan.squeezed));
-        auto is_squeezed = [&](const quilt::PatchPlan::Change* ch) { return ch >= first_squeezed; };
+        // The plan's `squeezed` changes from `squeezed_from` on are losers kept (see plan_patch): extras,
+        // not counted as avoided collisions when they do not fit.
+        const quilt::PatchPlan::Change* first_squeezed = plan.changes.data() + plan.squeezed_from;
+        auto is_squeezed = [&](const quilt::PatchPlan::Change* ch) { return ch >= first_squeezed && ch < first_squeezed + plan.squeezed; };
         for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
             std::vector<const quilt::PatchPlan::Change*> refused;
             for (const auto* ch : pending) {
@@ -322,7 +323,9 @@ private:
                         continue;
                     }
                     add_element(*mesh, ch->source);
-                    if (is_squeezed(ch) || mesh == &ch->fallback) ++report_.elements_squeezed;
+                    // A layered swatch's losers come back whole (KernelParams::layer_gap), not squeezed.
+                    if (is_squeezed(ch) && sw_.layered) ++report_.losers_kept;
+                    else if (is_squeezed(ch) || mesh == &ch->fallback) ++report_.elements_squeezed;
                     continue;
                 }
                 const int source = ch->source >= 0 ? ch->source : elems_[static_cast<std::size_t>(ch->old_id)].source;

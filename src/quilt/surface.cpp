@@ -105,6 +105,9 @@ constexpr double kMendMinSize = 0.75;
 /// root of the area, a lowered shell's flattening included): the stage promises a factor 1.5
 /// (0.667), and 0.7 leaves a margin.
 constexpr double kMinElementSize = 0.7;
+/// ... and at most this many times it (the promise of 1.5 with a margin): an element the map
+/// stretches over a sharp tip (the armadillo's claws: a scale 1.59 times its size) is refused.
+constexpr double kMaxElementSize = 1.4;
 /// ... and one below it is first enlarged in the frame to this share of its size.
 constexpr double kGrowBackSize = 0.85;
 /// Below this share of the swatch's density in some region, the result carries a warning.
@@ -284,6 +287,7 @@ public:
         params_.mu = opt_.mu;
         params_.thread_remnants = true;
         params_.layered = sw_.layered;
+        params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare swatch"] += seconds_since(t0);
         t0 = Clock::now();
@@ -324,6 +328,8 @@ public:
                         removed = true;
                     }
             }
+            mend_rings();
+        } else if (sw_.layered) {
             mend_rings();
         }
         stage_seconds_["mending"] += seconds_since(t0);
@@ -845,6 +851,10 @@ private:
     bool is_ring_source(int s) const {
         return s >= 0 && sw_.element_genus[static_cast<std::size_t>(s)] > 0 && !quilt::is_elongated(sw_.elements[static_cast<std::size_t>(s)]);
     }
+    /// Elements whose empty lattice slots are mended after the last patch (mend_rings): rings, and
+    /// a layered swatch's blobs (scales lie in rows, each over the next, and a missing scale leaves a
+    /// slot that no bald-spot disc measures: its neighbours overlap it).
+    bool is_lattice_source(int s) const { return is_ring_source(s) || (sw_.layered && quilt::is_blob_source(sw_, s)); }
 
     /// Beyond the paper: elements that hold on to their neighbours where the swatch has them, the
     /// rings of a chain mail (interlocked_) and the threads of a weave (both directions), are
@@ -1724,7 +1734,7 @@ private:
                 // shrinks ground that the rescaled element cannot fit on, embed_sized keeps it as is).
                 const double want = mesh_area(sw_.elements[static_cast<std::size_t>(source)]) * scale_ * scale_ * local * local;
                 const double floor = fill_.area_floor * scale_ * scale_ * local * local;
-                if (mesh_area(embedded) < std::max(kFillMinArea * want, floor)) return false;
+                if (mesh_area(embedded) < std::max(kFillMinArea * want, floor) || mesh_area(embedded) > kMaxElementSize * kMaxElementSize * want) return false;
                 return !collider_.collides(embedded) && count_self_intersections(embedded, 1) == 0;
             },
             [&](const Mesh& m, int source) {
@@ -1857,7 +1867,7 @@ private:
     /// patch put 300 rings into holes, and later patches then placed 300 fewer).
     void mend_rings() {
         std::vector<char> is_ring(sw_.elements.size(), 0);
-        for (std::size_t s = 0; s < is_ring.size(); ++s) is_ring[s] = is_ring_source(static_cast<int>(s));
+        for (std::size_t s = 0; s < is_ring.size(); ++s) is_ring[s] = is_lattice_source(static_cast<int>(s));
         const quilt::RingLattice lattice = quilt::ring_lattice(sw_, is_ring);
         if (lattice.spacing <= 0.0) return;
         const double spacing = lattice.spacing;
@@ -1875,7 +1885,7 @@ private:
         // a swatch whose rings rarely fit, such as a Japanese mail's connectors that must link
         // two rings, would otherwise try for minutes).
         const auto standing = static_cast<double>(
-            std::count_if(elems_.begin(), elems_.end(), [&](const SurfElement& e) { return e.alive && is_ring_source(e.source); }));
+            std::count_if(elems_.begin(), elems_.end(), [&](const SurfElement& e) { return e.alive && is_lattice_source(e.source); }));
         hole_tries_ = 0;
         hole_budget_ = static_cast<long>(kHoleBudget * standing);
         hole_free_ = std::max(1000L, static_cast<long>(kHoleTriesFree * standing));
@@ -2000,10 +2010,11 @@ private:
                 filled.push_back(sum / n);
                 filled_id.push_back(id);
             }
-            if (Pose pose; is_ring_source(e.source) && element_pose(e, flat, hs, &pose) && pose.residual <= 0.1 * spacing) poses.push_back(pose);
+            if (Pose pose; is_lattice_source(e.source) && element_pose(e, flat, hs, &pose) && pose.residual <= 0.1 * spacing) poses.push_back(pose);
         }
         std::vector<SurfacePoint> anchors;
         Mesh embedded;
+        mend_near_ = &filled_id;  // a mended blob keeps the swatch's clearance from these (mend_slot)
         for (std::size_t k = 0; k < poses.size(); ++k) {  // grows: a mended ring mends on
             const Pose pose = poses[k];
             const double unit = spacing * std::sqrt(std::fabs(pose.A.determinant()));
@@ -2035,7 +2046,13 @@ private:
                 }
             }
         }
-        fill_ring_holes(flat, locator, hs, local, R, lattice, poses, filled, filled_id, &anchors, &embedded);
+        // Holes between two lattices are filled with rings only (a blob that fits one is a bald
+        // spot, fill_patch's).
+        std::vector<Pose> ring_poses;
+        for (const Pose& p : poses)
+            if (is_ring_source(p.source)) ring_poses.push_back(p);
+        mend_near_ = nullptr;
+        fill_ring_holes(flat, locator, hs, local, R, lattice, ring_poses, filled, filled_id, &anchors, &embedded);
     }
 
     /// Beyond the paper: holes at the seams of ring lattices. Where two lattices meet at an angle,
@@ -2334,7 +2351,9 @@ private:
                 // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its
                 // swatch element's size (the square root of the area; the stage promises 1.5).
                 if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) continue;
+                if (!is_ring_source(j) && off_size(*embedded, j, local)) continue;
                 if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
+                if (!is_ring_source(j) && !keeps_clearance_3d(*embedded, local)) continue;
                 if (interlocked_ && links_with(*embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
                     *lasting = false;  // a ring mended later may give it a link
                     continue;
@@ -2446,7 +2465,14 @@ private:
                     refused.push_back(std::move(c));
                     continue;
                 }
-                if (ch->kind == Kind::Added && !keeps_clearance(resized_in_frame(ch->mesh, c.resize), ch->source, around, nullptr, c.resize)) {
+                // An addition may be an old element handed back whole (a layered swatch's merge
+                // loser, see quilt::KernelParams::layer_gap, whose winner replaces it): it is not
+                // its own neighbour.
+                const Mesh* self = nullptr;
+                if (ch->kind == Kind::Added)
+                    for (const Mesh* a : around)
+                        if (a->vertices == ch->mesh.vertices) self = a;
+                if (ch->kind == Kind::Added && !keeps_clearance(resized_in_frame(ch->mesh, c.resize), ch->source, around, self, c.resize)) {
                     refused.push_back(std::move(c));
                     continue;
                 }
@@ -2457,11 +2483,11 @@ private:
                 std::vector<SurfacePoint>* anchors = &c.anchors;
                 Mesh* embedded = &c.embedded;
                 const int of = ch->source >= 0 || ch->old_id < 0 ? ch->source : elems_[static_cast<std::size_t>(ch->old_id)].source;
-                if (collider_.collides(c.embedded, ignore) || too_small(c.embedded, of, local)) {
+                if (collider_.collides(c.embedded, ignore) || off_size(c.embedded, of, local)) {
                     // A thread's whole partner would replace the old thread, parts beyond the patch
                     // included: it is cut clear of the old one instead (below).
                     const bool thread_partner = kind == Kind::Stitched && quilt::is_elongated(ch->fallback);
-                    if (c.fallback.faces.empty() || thread_partner || collider_.collides(c.fallback, ignore) || too_small(c.fallback, of, local)) {
+                    if (c.fallback.faces.empty() || thread_partner || collider_.collides(c.fallback, ignore) || off_size(c.fallback, of, local)) {
                         refused.push_back(std::move(c));
                         continue;
                     }
@@ -2478,6 +2504,8 @@ private:
                     if (kind == Kind::Replaced) ++report_.elements_replaced;
                 }
                 add_element(std::move(*anchors), *faces, std::move(*embedded), source);
+                if (kind == Kind::Added && ch >= plan.changes.data() + plan.squeezed_from && ch < plan.changes.data() + plan.squeezed_from + plan.squeezed)
+                    ++report_.losers_kept;
                 applied.push_back(faces == &ch->fallback.faces ? &ch->fallback : &ch->mesh);
             }
             if (refused.size() == before) {
@@ -2606,6 +2634,11 @@ private:
         const double size = element_size(embedded, source, local);
         return size >= 0.0 && size < kMinElementSize;
     }
+    /// ... or larger than kMaxElementSize of it.
+    bool off_size(const Mesh& embedded, int source, double local) const {
+        const double size = element_size(embedded, source, local);
+        return size >= 0.0 && (size < kMinElementSize || size > kMaxElementSize);
+    }
     /// ... its size as a share of its swatch element's (the square root of the area ratio); -1 where
     /// too_small does not apply.
     double element_size(const Mesh& embedded, int source, double local) const {
@@ -2643,7 +2676,7 @@ private:
                 std::vector<SurfacePoint> anchors;
                 Mesh embedded;
                 // The collision test first: most moves fail it, and it costs less than the others.
-                if (!place_sized(moved, ch.source, true, &anchors, &embedded) || collider_.collides(embedded, {}) || too_small(embedded, ch.source, local) ||
+                if (!place_sized(moved, ch.source, true, &anchors, &embedded) || collider_.collides(embedded, {}) || off_size(embedded, ch.source, local) ||
                     !keeps_gap(moved) || count_self_intersections(embedded, 1) > 0)
                     continue;
                 add_element(std::move(anchors), m.faces, std::move(embedded), ch.source);
@@ -2876,6 +2909,23 @@ private:
     /// make_frame's largest disc as a share of a patch's (0: a patch's); set by mend_threads for
     /// its smaller frames.
     double frame_cap_ = 0.0;
+    /// The elements near mend_frame's frame (ids into elems_; grows as it mends), for the clearance
+    /// of mended blobs.
+    const std::vector<int>* mend_near_ = nullptr;
+
+    /// Does `embedded` (a blob on the surface, placed with local scale `local`) keep the swatch's
+    /// clearance (near_gap at that scale, vertex to vertex) from the standing elements mend_near_
+    /// lists? (keeps_clearance measures frame meshes; a mended blob is tested once embedded.)
+    bool keeps_clearance_3d(const Mesh& embedded, double local) const {
+        if (!mend_near_ || !(sw_.near_gap > 0.0)) return true;
+        const double gap = sw_.near_gap * scale_ * local;
+        const Box3 box = bounding_box(embedded);
+        for (int id : *mend_near_) {
+            const SurfElement& e = elems_[static_cast<std::size_t>(id)];
+            if (e.alive && !e.embedded.faces.empty() && quilt::element_gap(embedded, box, e.embedded, gap) < gap) return false;
+        }
+        return true;
+    }
     SurfaceQuiltOptions opt_;
     quilt::SwatchData sw_;
     TriangleIndex index_;
