@@ -153,7 +153,11 @@ TEST(Merging, ALayeredLoserStaysBesideTheWinnerWhenItKeepsClear) {
         const mq::quilt::PatchPlan plan = mq::quilt::plan_patch(old, {{0, fresh}}, ov, params);
         EXPECT_EQ(plan.correspondences, 1);
         std::vector<Mesh> kept;
-        for (std::size_t k = plan.changes.size() - static_cast<std::size_t>(plan.squeezed); k < plan.changes.size(); ++k) {
+        // The winner of a kept pair stays as it was too (deformed half-way it would move into the loser).
+        if (plan.squeezed > 0)
+            for (std::size_t k = 0; k < plan.squeezed_from; ++k)
+                if (plan.changes[k].old_id == 0) EXPECT_TRUE(plan.changes[k].mesh.vertices == under.vertices || plan.changes[k].mesh.vertices == fresh.vertices);
+        for (std::size_t k = plan.squeezed_from; k < plan.squeezed_from + static_cast<std::size_t>(plan.squeezed); ++k) {
             EXPECT_EQ(plan.changes[k].kind, mq::quilt::PatchPlan::Change::Added);
             kept.push_back(plan.changes[k].mesh);
         }

@@ -2465,14 +2465,7 @@ private:
                     refused.push_back(std::move(c));
                     continue;
                 }
-                // An addition may be an old element handed back whole (a layered swatch's merge
-                // loser, see quilt::KernelParams::layer_gap, whose winner replaces it): it is not
-                // its own neighbour.
-                const Mesh* self = nullptr;
-                if (ch->kind == Kind::Added)
-                    for (const Mesh* a : around)
-                        if (a->vertices == ch->mesh.vertices) self = a;
-                if (ch->kind == Kind::Added && !keeps_clearance(resized_in_frame(ch->mesh, c.resize), ch->source, around, self, c.resize)) {
+                if (ch->kind == Kind::Added && !keeps_clearance(resized_in_frame(ch->mesh, c.resize), ch->source, around, nullptr, c.resize)) {
                     refused.push_back(std::move(c));
                     continue;
                 }
