@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 #include <string>
@@ -532,4 +533,125 @@ TEST(ShellMap, PointsBeyondAnEdgeContinueOntoTheNeighbour) {
             worst = std::max(worst, spindle_solid.distance(spindle_shell.map({static_cast<int>(f), bary, 0.0})));
         }
     EXPECT_LT(worst, 1e-9);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The cells of surface quilting: thin faces remeshed, long edges split (quilt/patch.h).
+
+namespace {
+
+double smallest_angle_degrees(const Mesh& m) {
+    double lo = 180.0;
+    for (const mq::Tri& t : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]], b = m.vertices[t[(k + 2) % 3]] - m.vertices[t[k]];
+            lo = std::min(lo, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+        }
+    return lo;
+}
+
+/// The share of angles below `degrees`.
+double share_of_angles_below(const Mesh& m, double degrees) {
+    int below = 0;
+    for (const mq::Tri& t : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]], b = m.vertices[t[(k + 2) % 3]] - m.vertices[t[k]];
+            below += std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI < degrees;
+        }
+    return static_cast<double>(below) / (3.0 * static_cast<double>(m.faces.size()));
+}
+
+double longest_edge(const Mesh& m) {
+    double hi = 0.0;
+    for (const mq::Tri& t : m.faces)
+        for (int k = 0; k < 3; ++k) hi = std::max(hi, (m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]]).norm());
+    return hi;
+}
+
+double total_area(const Mesh& m) {
+    double a = 0.0;
+    for (std::size_t f = 0; f < m.faces.size(); ++f) a += mq::face_area(m, f);
+    return a;
+}
+
+double enclosed_volume(const Mesh& m) {
+    double v = 0.0;
+    for (const mq::Tri& t : m.faces) v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+    return v;
+}
+
+bool has_vertex_at(const Mesh& m, const Vec3& p) {
+    return std::any_of(m.vertices.begin(), m.vertices.end(), [&](const Vec3& v) { return (v - p).norm() < 1e-12; });
+}
+
+}  // namespace
+
+TEST(Cells, AFanOfSliversBecomesWellShapedCellsOnTheSameDisc) {
+    // A round face as CAD exports it: 400 slivers of 0.9 degrees around one vertex.
+    const Mesh fan = shapes::fan_disc(1.0, 400);
+    ASSERT_LT(smallest_angle_degrees(fan), 1.0);
+    std::vector<int> parent;
+    int thin = -1;
+    const Mesh cells = mq::quilt::refine_long_edges(fan, 0.05, &parent, &thin);
+    EXPECT_EQ(thin, 400);
+    std::printf("fan: %zu cells, smallest angle %.1f, %.2f%% of the angles under 15 degrees\n", cells.faces.size(), smallest_angle_degrees(cells),
+                100.0 * share_of_angles_below(cells, 15.0));
+    // Well shaped (measured: smallest angle 15.5 degrees, at the rim, whose edges are kept; the
+    // target edge is 0.75 of the asked length). Edges about as long as asked: split_long_edges
+    // leaves the new diagonals of a split face unchecked. The same flat disc: every vertex on the
+    // plane and in the disc, every rim vertex kept (the boundary is split, never collapsed), so the
+    // area is the fan's.
+    EXPECT_GT(smallest_angle_degrees(cells), 12.0);
+    EXPECT_LE(longest_edge(cells), 1.15 * 0.05);
+    for (const Vec3& v : cells.vertices) {
+        EXPECT_EQ(v.z(), 0.0);
+        EXPECT_LE(std::hypot(v.x(), v.y()), 1.0 + 1e-12);
+    }
+    for (std::size_t i = 1; i < fan.vertices.size(); ++i) EXPECT_TRUE(has_vertex_at(cells, fan.vertices[i])) << "rim vertex " << i;
+    EXPECT_NEAR(total_area(cells), total_area(fan), 1e-9);
+    ASSERT_EQ(parent.size(), cells.faces.size());
+    for (int p : parent) EXPECT_TRUE(p >= 0 && p < 400);
+}
+
+TEST(Cells, SliversOnACubeAreRemeshedKeepingItsEdgesAndCorners) {
+    // Each face of the cube [-1, 1]^3 a fan of 4 x 24 slivers (3.75 degrees): sharp edges, corners.
+    const Mesh cube = shapes::fan_cube(2.0, 24);
+    ASSERT_TRUE(mq::test::is_closed_manifold(cube));
+    ASSERT_NEAR(enclosed_volume(cube), 8.0, 1e-12);
+    std::vector<int> parent;
+    int thin = -1;
+    const Mesh cells = mq::quilt::refine_long_edges(cube, 0.15, &parent, &thin);
+    EXPECT_EQ(thin, static_cast<int>(cube.faces.size()));
+    std::printf("cube: %zu cells, smallest angle %.1f, %.2f%% of the angles under 15 degrees\n", cells.faces.size(), smallest_angle_degrees(cells),
+                100.0 * share_of_angles_below(cells, 15.0));
+    EXPECT_TRUE(mq::test::is_closed_manifold(cells));
+    EXPECT_GT(smallest_angle_degrees(cells), 12.0);  // measured 22.5
+    EXPECT_LE(longest_edge(cells), 1.15 * 0.15);
+    // Still the cube: every vertex on its surface, its 8 corners there, the volume unchanged (a
+    // rounded edge or a corner cut would lose volume).
+    for (const Vec3& v : cells.vertices) EXPECT_NEAR(v.cwiseAbs().maxCoeff(), 1.0, 1e-12);
+    for (int i = 0; i < 8; ++i) EXPECT_TRUE(has_vertex_at(cells, Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1))) << "corner " << i;
+    EXPECT_NEAR(enclosed_volume(cells), 8.0, 1e-9);
+}
+
+TEST(Cells, AWellShapedBaseIsOnlySplit) {
+    // No thin face: nothing is remeshed, and every input vertex stays where it was.
+    const Mesh sphere = isect::icosphere(1.0, 3);
+    std::vector<int> parent;
+    int thin = -1;
+    const Mesh cells = mq::quilt::refine_long_edges(sphere, 0.05, &parent, &thin);
+    EXPECT_EQ(thin, 0);
+    EXPECT_GT(cells.faces.size(), 4 * sphere.faces.size());
+    for (const Vec3& v : sphere.vertices) EXPECT_TRUE(has_vertex_at(cells, v));
+    EXPECT_NEAR(total_area(cells), total_area(sphere), 1e-9);
+    // The eight's 16 thin faces (5-10 degrees, 3.5-4.5 cells long at scale 0.2) lie in clusters of
+    // at most 0.05 footprints, each within one patch: left as they are (kThinClusterFootprints).
+    const Mesh eight = mq::read_mesh(surface_data_path("eight.obj"));
+    const double cell = 0.2 * diagonal(eight) / 6.0;
+    const Mesh eight_cells = mq::quilt::refine_long_edges(eight, cell, &parent, &thin);
+    EXPECT_EQ(thin, 0);
+    for (const Vec3& v : eight.vertices) EXPECT_TRUE(has_vertex_at(eight_cells, v));
+    // ... while at a quarter of that cell its largest clusters are 0.75 footprints: remeshed.
+    (void)mq::quilt::refine_long_edges(eight, cell / 4.0, &parent, &thin);
+    EXPECT_GT(thin, 16);
 }

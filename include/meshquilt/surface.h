@@ -109,6 +109,11 @@ struct SurfaceQualityReport {
     /// Shell embedding: vertices on folds of the base (no direction sees all their faces) moved to
     /// their neighbours' mean on the synthesis's copy of the base.
     int base_fold_vertices_smoothed = 0;
+    /// Base faces in regions remeshed on the synthesis's copy because of thin faces (smallest angle
+    /// under 10 degrees, longer than a quarter cell, in clusters of half a footprint or more: the
+    /// slivers of CAD fans or CSG), with one ring of faces around them; their vertices stay on the
+    /// base's surface.
+    int base_thin_faces_remeshed = 0;
     /// Output vertices behind the base (inner side of the closest base face, deeper than 1% of the
     /// shell height), and elements with any: decoration cutting into the base.
     int vertices_below_base = 0;

@@ -119,6 +119,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"regions", s.regions},
                         {"base_flipped_components", s.base_flipped_components},
                         {"base_fold_vertices_smoothed", s.base_fold_vertices_smoothed},
+                        {"base_thin_faces_remeshed", s.base_thin_faces_remeshed},
                         {"vertices_below_base", s.vertices_below_base},
                         {"elements_below_base", s.elements_below_base},
                         {"vertices_above_shell", s.vertices_above_shell},

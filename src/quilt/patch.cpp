@@ -5,6 +5,7 @@
 #include "meshquilt/errors.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -85,8 +86,107 @@ std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3
     return region;
 }
 
-Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent) {
+namespace {
+/// Sine of a face's smallest angle (the angle opposite its shortest edge: 2 * area over the product
+/// of the two longer edges) and its longest edge; 0 for a degenerate face.
+std::pair<double, double> thinness(const SM& sm, SM::Face_index f) {
+    std::array<K::Point_3, 3> p;
+    int k = 0;
+    for (SM::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm)) p[static_cast<std::size_t>(k++)] = sm.point(v);
+    std::array<double, 3> e{std::sqrt(CGAL::squared_distance(p[0], p[1])), std::sqrt(CGAL::squared_distance(p[1], p[2])),
+                            std::sqrt(CGAL::squared_distance(p[2], p[0]))};
+    std::sort(e.begin(), e.end());
+    const double twice_area = std::sqrt(CGAL::cross_product(p[1] - p[0], p[2] - p[0]).squared_length());
+    const double denom = e[1] * e[2];
+    return {denom > 0.0 ? twice_area / denom : 0.0, e[2]};
+}
+
+/// Remeshes the thin faces (see refine_long_edges) with one ring of faces around them; returns the
+/// number of input faces in the remeshed region.
+int remesh_thin_faces(SM& sm, double max_length) {
+    const double min_sine = std::sin(kMinCellAngleDegrees * M_PI / 180.0);
+    auto in_region = sm.add_property_map<SM::Face_index, char>("f:thin_region", 0).first;
+    auto is_thin = sm.add_property_map<SM::Face_index, char>("f:thin", 0).first;
+    bool any = false;
+    for (SM::Face_index f : sm.faces()) {
+        const auto [sine, longest] = thinness(sm, f);
+        if (sine < min_sine && longest > kThinFaceMinLength * max_length) is_thin[f] = 1, any = true;
+    }
+    // Clusters of thin faces (sharing edges) smaller than kThinClusterFootprints of a footprint (six
+    // cells across) lie within one patch among well-shaped faces, and are left as they are.
+    std::vector<SM::Face_index> thin;
+    if (any) {
+        auto seen = sm.add_property_map<SM::Face_index, char>("f:seen", 0).first;
+        const double footprint = 36.0 * max_length * max_length;
+        for (SM::Face_index f0 : sm.faces()) {
+            if (!is_thin[f0] || seen[f0]) continue;
+            std::vector<SM::Face_index> cluster{f0};
+            seen[f0] = 1;
+            double area = 0.0;
+            for (std::size_t i = 0; i < cluster.size(); ++i) {
+                area += PMP::face_area(cluster[i], sm);
+                for (SM::Halfedge_index h : CGAL::halfedges_around_face(sm.halfedge(cluster[i]), sm)) {
+                    const SM::Face_index g = sm.face(sm.opposite(h));
+                    if (g != SM::null_face() && is_thin[g] && !seen[g]) {
+                        seen[g] = 1;
+                        cluster.push_back(g);
+                    }
+                }
+            }
+            if (area >= kThinClusterFootprints * footprint) thin.insert(thin.end(), cluster.begin(), cluster.end());
+        }
+        sm.remove_property_map(seen);
+    }
+    sm.remove_property_map(is_thin);
+    if (thin.empty()) {
+        sm.remove_property_map(in_region);
+        return 0;
+    }
+    // One ring of faces around each thin face gives the remesher room to flip and move vertices.
+    std::vector<SM::Face_index> region;
+    for (SM::Face_index f : thin)
+        for (SM::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm))
+            for (SM::Face_index g : CGAL::faces_around_target(sm.halfedge(v), sm))
+                if (g != SM::null_face() && !in_region[g]) {
+                    in_region[g] = 1;
+                    region.push_back(g);
+                }
+    // Target: the edge of an equilateral triangle of the region's mean area (about as many faces as
+    // before, well shaped), at most kThinFaceTarget of the cell edge (the mean edge that splitting
+    // leaves elsewhere: halves of edges up to twice the cell edge).
+    double area = 0.0;
+    for (SM::Face_index f : region) area += PMP::face_area(f, sm);
+    const double equilateral = std::sqrt(4.0 * area / (std::sqrt(3.0) * static_cast<double>(region.size())));
+    const double target = std::min(kThinFaceTarget * max_length, equilateral);
+    // Sharp edges (and the mesh's boundary, by default) keep their polylines: split, never collapsed
+    // or flipped; their corners stay.
+    auto sharp = sm.add_property_map<SM::Edge_index, bool>("e:sharp", false).first;
+    PMP::detect_sharp_edges(sm, kSharpEdgeDegrees, sharp);
+    auto corner = sm.add_property_map<SM::Vertex_index, bool>("v:corner", false).first;
+    for (SM::Vertex_index v : sm.vertices()) {
+        int n = 0;
+        for (SM::Halfedge_index h : CGAL::halfedges_around_target(v, sm)) n += sharp[sm.edge(h)] ? 1 : 0;
+        corner[v] = n != 0 && n != 2;
+    }
+    if (target > 0.0)
+        PMP::isotropic_remeshing(region, target, sm,
+                                 CGAL::parameters::number_of_iterations(3)
+                                     .edge_is_constrained_map(sharp)
+                                     .vertex_is_constrained_map(corner)
+                                     .collapse_constraints(false));
+    const auto n = static_cast<int>(region.size());
+    sm.remove_property_map(in_region);
+    sm.remove_property_map(sharp);
+    sm.remove_property_map(corner);
+    sm.collect_garbage();
+    return n;
+}
+}  // namespace
+
+Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent, int* thin_remeshed) {
     SM sm = to_surface_mesh(mesh);
+    const int thin = remesh_thin_faces(sm, max_length);
+    if (thin_remeshed) *thin_remeshed = thin;
     PMP::split_long_edges(edges(sm), max_length, sm);
     Mesh out;
     out.vertices.reserve(sm.number_of_vertices());

@@ -17,9 +17,31 @@ namespace meshquilt::quilt {
 std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3>>& neighbours,
                            const std::vector<Vec3>& centroids, int seed, double radius);
 
-/// Split every edge longer than `max_length` (CGAL::Polygon_mesh_processing::split_long_edges); the
-/// surface does not move. `parent` receives, per new face, a face of the input it lies in.
-Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent);
+/// Faces whose smallest angle is below this are thin (slivers and needles: CAD fans, CSG output)...
+inline constexpr double kMinCellAngleDegrees = 10.0;
+/// ... when their longest edge is longer than this fraction of the cell edge (smaller ones vanish in
+/// a patch of many cells).
+inline constexpr double kThinFaceMinLength = 0.25;
+/// ... in clusters (sharing edges) of at least this share of a footprint (6 x 6 cells): a smaller
+/// cluster lies within one patch among well-shaped faces (a coarse scan's few slivers, measured
+/// harmless there: remeshing the eight's 14 clusters of at most 0.05 footprints cost its chain mail
+/// a tenth of its rings linked with 4 others, docs/surface.md step 1).
+inline constexpr double kThinClusterFootprints = 0.5;
+/// The remeshed regions' edge, at most (as a share of the cell edge).
+inline constexpr double kThinFaceTarget = 0.75;
+/// Dihedral angle (degrees) beyond which an edge is sharp and is kept by the remeshing of thin faces.
+inline constexpr double kSharpEdgeDegrees = 45.0;
+
+/// The cells of surface quilting. Clusters of thin faces (kMinCellAngleDegrees, kThinFaceMinLength,
+/// kThinClusterFootprints) and one ring of faces around them are remeshed first
+/// (CGAL::Polygon_mesh_processing::isotropic_remeshing at the region's equilateral edge, at most
+/// kThinFaceTarget of `max_length`; vertices stay on the input surface, sharp edges, corners and the
+/// boundary keep their polylines): a sliver's centroid says little about where it is, and a fan of
+/// them around one vertex defeats the disc growth and the marking of processed faces. Then
+/// every edge longer than `max_length` is split (split_long_edges; the surface does not move).
+/// `parent` receives, per new face, the input face closest to its centroid; `thin_remeshed` the
+/// number of input faces in the remeshed regions (0: the surface is exactly the input's).
+Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent, int* thin_remeshed = nullptr);
 
 /// A disc of the base flattened by LSCM.
 struct FlatPatch {

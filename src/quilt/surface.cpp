@@ -439,7 +439,7 @@ private:
                                "): it would take about " + std::to_string(static_cast<long long>(est_refined)) +
                                " base triangles; choose a larger --scale or --swatch-size");
         std::vector<int> parent;
-        base_.mesh = quilt::refine_long_edges(m, max_edge, &parent);
+        base_.mesh = quilt::refine_long_edges(m, max_edge, &parent, &surface_.base_thin_faces_remeshed);
         if (opt_.embedding == Embedding::Shell) {
             // Folds (a scan's crumpled slivers, where no direction sees every face around a vertex
             // from outside) would leave shell prisms inverted: such vertices of our copy move to

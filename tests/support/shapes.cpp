@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "support/shapes.h"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <tuple>
+#include <vector>
 #include <set>
 #include <stdexcept>
 
@@ -32,6 +34,57 @@ Mesh cube(double size, const Vec3& origin) {
     add_quad(m, 2, 6, 7, 3);  // y = 1, normal +y
     add_quad(m, 0, 4, 6, 2);  // x = 0, normal -x
     add_quad(m, 1, 3, 7, 5);  // x = 1, normal +x
+    return m;
+}
+
+Mesh fan_disc(double radius, int n) {
+    if (n < 3) throw std::invalid_argument("fan_disc needs n >= 3");
+    Mesh m;
+    m.vertices.emplace_back(0.0, 0.0, 0.0);
+    for (int i = 0; i < n; ++i) m.vertices.emplace_back(radius * std::cos(2 * kPi * i / n), radius * std::sin(2 * kPi * i / n), 0.0);
+    for (int i = 0; i < n; ++i) m.faces.emplace_back(0, 1 + i, 1 + (i + 1) % n);
+    return m;
+}
+
+Mesh fan_cube(double size, int n) {
+    if (n < 1) throw std::invalid_argument("fan_cube needs n >= 1");
+    Mesh m;
+    // Vertices on the cube's edges are shared: keyed by their integer coordinates on a grid of n
+    // steps per edge.
+    std::map<std::tuple<int, int, int>, int> id;
+    auto vertex = [&](int i, int j, int k) {
+        auto [it, fresh] = id.emplace(std::make_tuple(i, j, k), static_cast<int>(m.vertices.size()));
+        if (fresh) m.vertices.emplace_back(size * (static_cast<double>(i) / n - 0.5), size * (static_cast<double>(j) / n - 0.5),
+                                           size * (static_cast<double>(k) / n - 0.5));
+        return it->second;
+    };
+    // Each face: axis `a` fixed at side s (0 or n), u and v the other axes with u x v = +a.
+    for (int a = 0; a < 3; ++a)
+        for (int s = 0; s <= n; s += n) {
+            const int u = (a + 1) % 3, v = (a + 2) % 3;
+            auto at = [&](int iu, int iv) {
+                std::array<int, 3> c{};
+                c[static_cast<std::size_t>(a)] = s;
+                c[static_cast<std::size_t>(u)] = iu;
+                c[static_cast<std::size_t>(v)] = iv;
+                return vertex(c[0], c[1], c[2]);
+            };
+            // The boundary loop, counter-clockwise seen from +a.
+            std::vector<int> loop;
+            for (int i = 0; i < n; ++i) loop.push_back(at(i, 0));
+            for (int i = 0; i < n; ++i) loop.push_back(at(n, i));
+            for (int i = n; i > 0; --i) loop.push_back(at(i, n));
+            for (int i = n; i > 0; --i) loop.push_back(at(0, i));
+            Vec3 centre = Vec3::Constant(0.0);
+            centre[a] = size * (s == 0 ? -0.5 : 0.5);
+            const int c = static_cast<int>(m.vertices.size());
+            m.vertices.push_back(centre);
+            for (std::size_t i = 0; i < loop.size(); ++i) {
+                const int p = loop[i], q = loop[(i + 1) % loop.size()];
+                if (s == n) m.faces.emplace_back(c, p, q);
+                else m.faces.emplace_back(c, q, p);  // the -a side faces the other way
+            }
+        }
     return m;
 }
 

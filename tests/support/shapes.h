@@ -41,6 +41,15 @@ Mesh double_torus();
 /// cells, vertices shared).
 Mesh grid_net(int n, double pitch, double bar, double h, double cell);
 
+/// A flat disc of `radius` at z = 0 (normal +z) triangulated as a fan: `n` slivers from the centre
+/// to the rim, as CAD exporters triangulate a round face. Open.
+Mesh fan_disc(double radius, int n);
+
+/// The cube [-size/2, size/2]^3 with each face triangulated as a fan from its centre to `n` points
+/// along each of its edges (4n slivers per face, vertices shared along the cube's edges): sharp
+/// edges and corners with CAD-like slivers. Closed, genus 0, facing outwards.
+Mesh fan_cube(double size, int n);
+
 /// Two copies of `a` and `b` in one mesh (b's indices shifted).
 Mesh concat(const Mesh& a, const Mesh& b);
 
