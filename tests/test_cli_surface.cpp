@@ -128,25 +128,50 @@ TEST_F(CliSurface, FailedRunLeavesExistingOutputUntouched) {
     EXPECT_EQ(slurp(out), "# a good file\n");
 }
 
-TEST_F(CliSurface, InsideOutBaseIsDecoratedWithAWarning) {
-    // The eight with every face reversed.
-    std::ifstream in(base);
-    std::ofstream flipped(dir / "flipped.obj");
+/// Copies the OBJ `from` to `to` with every `every`-th face (the first, then every `every`-th after
+/// it) reversed.
+void write_with_faces_reversed(const std::string& from, const fs::path& to, int every) {
+    std::ifstream in(from);
+    std::ofstream out(to);
     std::string line;
+    int f = 0;
     while (std::getline(in, line)) {
-        if (line.rfind("f ", 0) == 0) {
+        if (line.rfind("f ", 0) == 0 && f++ % every == 0) {
             std::istringstream ss(line.substr(2));
             std::string a, b, c;
             ss >> a >> b >> c;
-            flipped << "f " << a << " " << c << " " << b << "\n";
+            out << "f " << a << " " << c << " " << b << "\n";
         } else {
-            flipped << line << "\n";
+            out << line << "\n";
         }
     }
-    flipped.close();
+}
+
+TEST_F(CliSurface, InsideOutBaseIsDecoratedWithAWarning) {
+    // The eight with every face reversed.
+    write_with_faces_reversed(base, dir / "flipped.obj", 1);
     const Outcome o = run((dir / "flipped.obj").string() + " " + swatch + " --scale 0.3 -o " + (dir / "o.obj").string());
     EXPECT_EQ(o.code, 0) << o.err;
     EXPECT_NE(o.err.find("facing inwards"), std::string::npos) << o.err;
+}
+
+TEST_F(CliSurface, InconsistentlyOrientedBaseIsRefusedOrRepaired) {
+    // The eight with every third face reversed: its faces disagree about their sides.
+    const fs::path partly = dir / "partly.obj";
+    write_with_faces_reversed(base, partly, 3);
+    const std::string o_path = (dir / "o.obj").string();
+    Outcome o = run(partly.string() + " " + swatch + " --scale 0.3 -o " + o_path);
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find(partly.string() + ": "), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("inconsistent orientation"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("--repair"), std::string::npos) << o.err;
+    EXPECT_FALSE(fs::exists(o_path));
+    // With --repair the faces are reoriented, said once, naming the file once.
+    o = run(partly.string() + " " + swatch + " --scale 0.3 --repair -o " + o_path);
+    EXPECT_EQ(o.code, 0) << o.err;
+    EXPECT_EQ(count(o.err, "reoriented"), 1) << o.err;
+    EXPECT_NE(o.err.find("meshquilt: repaired " + partly.string() + ": reoriented "), std::string::npos) << o.err;
+    EXPECT_TRUE(fs::exists(o_path));
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ Mesh checked(const Mesh& mesh, const std::string& name, bool repair, bool swatch
     vo.repair = repair;
     vo.require_thin_axis = swatch;
     ValidationResult v = validate(mesh, name, vo);
-    for (auto& r : v.repairs) out.repairs.push_back(name + ": " + r);
+    for (auto& r : v.repairs) out.repairs.push_back(std::move(r));  // each starts with the file's name
     for (auto& w : v.warnings) warn(out, reporter, std::move(w));
     return std::move(v.mesh);
 }
