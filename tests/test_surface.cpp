@@ -300,8 +300,13 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     const auto [lo, hi] = region_density(run);
     RecordProperty("density_min", std::to_string(lo));
     RecordProperty("density_max", std::to_string(hi));
-    std::printf("%s + %s: region density %.3f - %.3f of the swatch's (threads laid into gaps %d, after the last patch %d)\n", c.name.c_str(),
-                c.swatch.c_str(), lo, hi, run.r.surface.threads_filled, run.r.surface.threads_mended);
+    std::printf("%s + %s: region density %.3f - %.3f of the swatch's (the report's %.3f - %.3f; threads laid into gaps %d, after the last patch %d)\n",
+                c.name.c_str(), c.swatch.c_str(), lo, hi, run.r.surface.region_density_min, run.r.surface.region_density_max,
+                run.r.surface.threads_filled, run.r.surface.threads_mended);
+    // On an open base the report's regions leave out the strip along the boundary that whole
+    // elements cannot fill, as this measure does, so the two lowest regions agree (measured within
+    // 0.019 on the fan disc, the tube and the cylinder; 0.038-0.074 when the report counted the strip).
+    if (mq::analyse(run.r.base).boundary_edges > 0) EXPECT_NEAR(run.r.surface.region_density_min, lo, 0.035);
     ASSERT_GT(hi, 0.0) << "no region of two footprints: choose a smaller scale";
     EXPECT_GE(lo, 0.85) << "a region is balder than the swatch";
     EXPECT_LE(hi, 1.15) << "a region is denser than the swatch";
@@ -337,6 +342,9 @@ TEST(Surface, OpenBaseIsCoveredAndElementsStayOnIt) {
     const Mesh base = shapes::open_cylinder(1.0, 3.0, 48, 24);
     const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("pebbles")), 0.2);
     expect_whole_and_disjoint(run);
+    // The report's regions leave out the strip along the rims that whole elements cannot fill.
+    std::printf("open cylinder + pebbles: report's region density %.3f - %.3f\n", run.r.surface.region_density_min, run.r.surface.region_density_max);
+    EXPECT_GE(run.r.surface.region_density_min, 0.85);
     // Elements sit outside the cylinder (along the outward normals) and within its height.
     for (const Vec3& v : run.r.mesh.vertices) {
         EXPECT_GE(std::hypot(v.x(), v.y()), 0.97);

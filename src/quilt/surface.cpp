@@ -28,6 +28,7 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <queue>
 #include <random>
 #include <unordered_map>
 
@@ -2856,12 +2857,50 @@ private:
             result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
     }
 
+    /// Per face: whether its centroid lies within `width` of the base's boundary (shortest paths
+    /// between face centroids from the midpoints of boundary edges; an upper bound on the distance).
+    std::vector<char> near_boundary(double width) const {
+        const std::size_t F = base_.mesh.faces.size();
+        std::vector<double> dist(F, std::numeric_limits<double>::infinity());
+        using Item = std::pair<double, int>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+        for (std::size_t f = 0; f < F; ++f)
+            for (int k = 0; k < 3; ++k)
+                if (base_.nb[f][static_cast<std::size_t>(k)] < 0) {
+                    const Tri& t = base_.mesh.faces[f];
+                    const Vec3 mid = 0.5 * (base_.mesh.vertices[static_cast<std::size_t>(t[k])] + base_.mesh.vertices[static_cast<std::size_t>(t[(k + 1) % 3])]);
+                    const double d = (base_.centroid[f] - mid).norm();
+                    if (d < dist[f]) {
+                        dist[f] = d;
+                        queue.emplace(d, static_cast<int>(f));
+                    }
+                }
+        while (!queue.empty()) {
+            const auto [d, f] = queue.top();
+            queue.pop();
+            if (d > dist[static_cast<std::size_t>(f)] || d >= width) continue;
+            for (int g : base_.nb[static_cast<std::size_t>(f)]) {
+                if (g < 0) continue;
+                const double nd = d + (base_.centroid[static_cast<std::size_t>(g)] - base_.centroid[static_cast<std::size_t>(f)]).norm();
+                if (nd < dist[static_cast<std::size_t>(g)]) {
+                    dist[static_cast<std::size_t>(g)] = nd;
+                    queue.emplace(nd, g);
+                }
+            }
+        }
+        std::vector<char> out(F, 0);
+        for (std::size_t f = 0; f < F; ++f) out[f] = dist[f] < width;
+        return out;
+    }
+
     /// Density per region: the base split into regions of about 4 footprints (farthest-point
     /// centres on face centroids, faces to the nearest centre); element faces count where they are
-    /// anchored. Regions with less than one footprint of area (small components, slivers at
-    /// borders) are left out.
+    /// anchored. A strip along the base's boundary half the largest element wide, which elements
+    /// (whole, and on the base) cannot fill, is left out, as the tests' measure leaves it out. Regions
+    /// with less than one footprint of area (small components, slivers at borders) are left out.
     void region_density(const SurfaceQuiltResult& result) {
         const std::size_t F = base_.mesh.faces.size();
+        const std::vector<char> strip = near_boundary(0.5 * element_diag_ * scale_);
         const double fp_area = sw_.box.size().x() * sw_.box.size().y() * scale_ * scale_;
         const int regions = std::clamp(static_cast<int>(base_.total_area / (4.0 * fp_area)), 1, 64);
         std::vector<Vec3> centres{base_.centroid[0]};
@@ -2880,9 +2919,11 @@ private:
             if (r + 1 < regions) centres.push_back(base_.centroid[far]);
         }
         std::vector<double> base_area(static_cast<std::size_t>(regions), 0.0), elem_area(static_cast<std::size_t>(regions), 0.0);
-        for (std::size_t f = 0; f < F; ++f) base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
+        for (std::size_t f = 0; f < F; ++f)
+            if (!strip[f]) base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
         for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
             const int bf = result.anchors[static_cast<std::size_t>(result.mesh.faces[f][0])].face;
+            if (strip[static_cast<std::size_t>(bf)]) continue;
             elem_area[static_cast<std::size_t>(region[static_cast<std::size_t>(bf)])] += face_area(result.mesh, f);
         }
         double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
