@@ -110,7 +110,10 @@ int remesh_thin_faces(SM& sm, double max_length) {
     bool any = false;
     for (SM::Face_index f : sm.faces()) {
         const auto [sine, longest] = thinness(sm, f);
-        if (sine < min_sine && longest > kThinFaceMinLength * max_length) is_thin[f] = 1, any = true;
+        if (sine < min_sine && longest > kThinFaceMinLength * max_length) {
+            is_thin[f] = 1;
+            any = true;
+        }
     }
     // Clusters of thin faces (sharing edges) smaller than kThinClusterFootprints of a footprint (six
     // cells across) lie within one patch among well-shaped faces, and are left as they are.
