@@ -272,3 +272,103 @@ TEST(Joints, NarrowJointsOpenGroundAndTheAreaCapLeaveAStoneAlone) {
     setup.paving = false;
     EXPECT_FALSE(quilt::grow_into_joints(a, {quilt::xy_hull(block(4, 0.5, Vec3(2.5, 0, 0)))}, setup, quilt::mesh_area(a), never, &grown));
 }
+
+namespace {
+
+/// The least distance from the xy projection of `m`'s vertices to the convex polygon `poly` (0 inside).
+double least_distance(const Mesh& m, const std::vector<Vec2>& poly) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Vec3& v : m.vertices) {
+        const Vec2 p = v.head<2>();
+        bool inside = true;
+        double d = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+            const Vec2 a = poly[i], e = poly[(i + 1) % poly.size()] - a;
+            if (e.x() * (p - a).y() - e.y() * (p - a).x() < 0.0) inside = false;
+            const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+            d = std::min(d, (a + t * e - p).norm());
+        }
+        best = std::min(best, inside ? 0.0 : d);
+    }
+    return best;
+}
+
+}  // namespace
+
+TEST(Gaps, AStoneGrowsIntoTheHoleWhereThreeMeetAndKeepsItsJoints) {
+    // Stone a = [0, 2]^2 with narrow joints (0.1) to a stone on its right and one above; both end
+    // short of a's top right corner, and a third stands diagonally beyond it: a hole about 0.8 wide.
+    quilt::JointSetup setup = test_joints();
+    setup.reach = 1.5;
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));
+    const std::vector<std::vector<Vec2>> around{quilt::xy_hull(block(4, 0.55, Vec3(2.1, -1.0, 0))),   // [2.1, 4.3] x [-1, 1.2]
+                                                quilt::xy_hull(block(4, 0.55, Vec3(-1.0, 2.1, 0))),   // [-1, 1.2] x [2.1, 4.3]
+                                                quilt::xy_hull(block(4, 0.5, Vec3(2.6, 2.6, 0)))};    // [2.6, 4.6]^2
+    double before = std::numeric_limits<double>::infinity();
+    for (const auto& o : around) before = std::min(before, least_distance(a, o));
+    ASSERT_NEAR(before, 0.1, 1e-9);
+    Mesh grown;
+    int asked = 0;
+    ASSERT_TRUE(quilt::grow_into_gaps(a, around, setup, quilt::mesh_area(a), [&](const Mesh&) { return ++asked > 0; }, &grown));
+    EXPECT_EQ(asked, 1);
+    EXPECT_TRUE(quilt::is_closed_oriented(grown));
+    EXPECT_EQ(mq::count_self_intersections(grown), 0);
+    // Into the hole: the corner moved out along the diagonal, by at most a third of the half diagonal.
+    const mq::Box3 box = mq::bounding_box(grown);
+    EXPECT_GT(box.max.x(), 2.2);
+    EXPECT_GT(box.max.y(), 2.2);
+    double corner = 0.0;
+    for (const Vec3& v : grown.vertices) corner = std::max(corner, v.x() + v.y());
+    EXPECT_GT(corner, 4.4);
+    EXPECT_LE(corner, 4.0 + std::sqrt(2.0) * quilt::kGapRadialShare * std::sqrt(2.0) + 1e-9);
+    // Every neighbour keeps at least the typical joint (up to the sampling of directions) ...
+    for (const auto& o : around) EXPECT_GT(least_distance(grown, o), 0.9 * setup.typical);
+    // ... and the sides facing narrow joints, the far sides and the height stay where they were.
+    for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+        const Vec3& p = a.vertices[i];
+        const Vec3& q = grown.vertices[i];
+        EXPECT_DOUBLE_EQ(q.z(), p.z());
+        if (p.y() <= 1.0 + 1e-12 || p.x() <= 1.0 + 1e-12) {
+            EXPECT_NEAR((q - p).norm(), 0.0, 0.05 * (1.0 + std::abs(p.x() - 1.0) + std::abs(p.y() - 1.0))) << p.transpose();
+        }
+    }
+    EXPECT_GT(quilt::mesh_area(grown), quilt::mesh_area(a));
+    EXPECT_LE(quilt::mesh_area(grown), quilt::kMaxGrowth * quilt::mesh_area(a));
+
+    // Refused at full growth: three quarters, then half of the move is offered next.
+    std::vector<double> offered;
+    ASSERT_TRUE(quilt::grow_into_gaps(
+        a, around, setup, quilt::mesh_area(a),
+        [&](const Mesh& g) {
+            double c = 0.0;
+            for (const Vec3& v : g.vertices) c = std::max(c, v.x() + v.y());
+            offered.push_back(c);
+            return offered.size() == 3;
+        },
+        &grown));
+    ASSERT_EQ(offered.size(), 3u);
+    EXPECT_GT(offered[0], offered[1]);
+    EXPECT_GT(offered[1], offered[2]);
+    EXPECT_NEAR(offered[2] - 4.0, 0.5 * (offered[0] - 4.0), 1e-9);  // half the move
+}
+
+TEST(Gaps, NarrowJointsOpenGroundAndNoPavingLeaveAStoneAlone) {
+    quilt::JointSetup setup = test_joints();
+    setup.reach = 1.5;
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));
+    Mesh grown;
+    auto never = [](const Mesh&) -> bool { ADD_FAILURE() << "nothing to grow, nothing to accept"; return false; };
+    // Narrow joints all round (a ring of four stones 0.1 away): nothing to grow.
+    const std::vector<std::vector<Vec2>> ring{quilt::xy_hull(block(4, 0.5, Vec3(2.1, 0, 0))), quilt::xy_hull(block(4, 0.5, Vec3(-2.1, 0, 0))),
+                                              quilt::xy_hull(block(4, 0.5, Vec3(0, 2.1, 0))), quilt::xy_hull(block(4, 0.5, Vec3(0, -2.1, 0)))};
+    EXPECT_FALSE(quilt::grow_into_gaps(a, ring, setup, quilt::mesh_area(a), never, &grown));
+    // Nothing within reach: open ground (a frontier, or the base's boundary), not a gap.
+    EXPECT_FALSE(quilt::grow_into_gaps(a, {quilt::xy_hull(block(4, 0.5, Vec3(3.6, 3.6, 0)))}, setup, quilt::mesh_area(a), never, &grown));
+    EXPECT_FALSE(quilt::grow_into_gaps(a, {}, setup, quilt::mesh_area(a), never, &grown));
+    // Every growth over the area cap: refused without asking.
+    const std::vector<std::vector<Vec2>> hole{quilt::xy_hull(block(4, 0.5, Vec3(2.6, 2.6, 0)))};
+    EXPECT_FALSE(quilt::grow_into_gaps(a, hole, setup, 0.7 * quilt::mesh_area(a), never, &grown));
+    // Not a paving: nothing.
+    setup.paving = false;
+    EXPECT_FALSE(quilt::grow_into_gaps(a, hole, setup, quilt::mesh_area(a), never, &grown));
+}

@@ -91,6 +91,7 @@ struct SurfaceQualityReport {
     int threads_filled = 0;        ///< threads laid into gaps where a direction's threads were missing (weave seams), whole or in pieces
     int threads_torn = 0;          ///< threads whose embedding stretched faces into a fan: cut clear of them (new) or refused (old)
     int threads_mended = 0;        ///< of those, laid after the last patch (gaps left or opened by later patches)
+    int gaps_closed = 0;           ///< paving stones grown radially into holes where several meet, after the last patch (included in joints_closed)
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
     int elements_mended = 0;       ///< rings (or a layered swatch's scales) put into empty lattice slots after the last patch

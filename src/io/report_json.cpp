@@ -104,6 +104,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"thread_pieces", s.thread_pieces},
                         {"threads_filled", s.threads_filled},
                         {"threads_mended", s.threads_mended},
+                        {"gaps_closed", s.gaps_closed},
                         {"threads_torn", s.threads_torn},
                         {"threads_cut_at_patch", s.threads_cut_at_patch},
                         {"elements_folded", s.elements_folded},

@@ -5,6 +5,7 @@
 #include "quilt/swatch.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -273,6 +274,39 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
     return added;
 }
 
+namespace {
+
+/// Distance from p to polygon `poly`'s boundary.
+double distance_to_polygon(const Vec2& p, const std::vector<Vec2>& poly) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 a = poly[i], e = poly[(i + 1) % poly.size()] - a;
+        const double l2 = e.squaredNorm();
+        const double t = l2 > 0.0 ? std::clamp((p - a).dot(e) / l2, 0.0, 1.0) : 0.0;
+        best = std::min(best, (a + t * e - p).norm());
+    }
+    return best;
+}
+
+/// Where the ray from c along the unit vector u crosses the boundary of polygon `poly`: the first
+/// crossing (`last` false; infinity if none) or the last (`last` true; 0 if none).
+double ray_crossing(const Vec2& c, const Vec2& u, const std::vector<Vec2>& poly, bool last) {
+    double best = last ? 0.0 : std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 p = poly[i], d = poly[(i + 1) % poly.size()] - p;
+        // c + t u = p + w d: Cramer's rule.
+        const double den = u.x() * (-d.y()) - u.y() * (-d.x());
+        if (std::abs(den) < 1e-300) continue;
+        const Vec2 r = p - c;
+        const double t = (r.x() * (-d.y()) - r.y() * (-d.x())) / den;
+        const double w = (u.x() * r.y() - u.y() * r.x()) / den;
+        if (t >= 0.0 && w >= -1e-12 && w <= 1.0 + 1e-12) best = last ? std::max(best, t) : std::min(best, t);
+    }
+    return best;
+}
+
+}  // namespace
+
 std::vector<std::size_t> hull_sides(const std::vector<Vec2>& hull) {
     double perimeter = 0.0;
     for (std::size_t i = 0; i < hull.size(); ++i) perimeter += (hull[(i + 1) % hull.size()] - hull[i]).norm();
@@ -288,21 +322,8 @@ double side_clearance(const std::vector<Vec2>& hull, std::size_t edge, const std
     if (!(e.norm() > 0.0)) return limit;
     const Vec2 n = Vec2(e.y(), -e.x()).normalized();  // outward for a counter-clockwise polygon
     double best = limit;
-    for (int k = 0; k < 5; ++k) {
-        const Vec2 o = a + (0.1 + 0.2 * k) * e;
-        for (const auto& poly : others)
-            for (std::size_t i = 0; i < poly.size(); ++i) {
-                const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
-                // o + t n = p + u (q - p): Cramer's rule.
-                const Vec2 d = q - p;
-                const double den = n.x() * (-d.y()) - n.y() * (-d.x());
-                if (std::abs(den) < 1e-300) continue;
-                const Vec2 r = p - o;
-                const double t = (r.x() * (-d.y()) - r.y() * (-d.x())) / den;
-                const double u = (n.x() * r.y() - n.y() * r.x()) / den;
-                if (t >= 0.0 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
-            }
-    }
+    for (int k = 0; k < 5; ++k)
+        for (const auto& poly : others) best = std::min(best, ray_crossing(a + (0.1 + 0.2 * k) * e, n, poly, false));
     return best;
 }
 
@@ -361,6 +382,61 @@ bool grow_into_joints(const Mesh& m, const std::vector<std::vector<Vec2>>& aroun
                 hi = std::max(hi, gr.inward.dot(v.head<2>()));
             }
             push_side(g, gr.inward, lo, hi, -std::min(share * gr.by, 0.3 * (hi - lo)));
+        }
+        if (mesh_area(g) > kMaxGrowth * source_area || !accept(g)) continue;
+        *grown = std::move(g);
+        return true;
+    }
+    return false;
+}
+
+bool grow_into_gaps(const Mesh& m, const std::vector<std::vector<Vec2>>& around, const JointSetup& setup, double source_area,
+                    const std::function<bool(const Mesh&)>& accept, Mesh* grown) {
+    if (!setup.paving) return false;
+    const std::vector<Vec2> hull = xy_hull(m);
+    if (hull.size() < 3) return false;
+    Vec2 c = Vec2::Zero();
+    for (const Vec2& p : hull) c += p;
+    c /= static_cast<double>(hull.size());
+    constexpr int K = kGapDirections;
+    std::array<double, K> radius{}, move{};
+    for (int k = 0; k < K; ++k) {
+        const double a = 2.0 * M_PI * k / K;
+        const Vec2 u(std::cos(a), std::sin(a));
+        radius[k] = ray_crossing(c, u, hull, true);
+        const Vec2 b = c + radius[k] * u;
+        double free = setup.reach, across = setup.reach;
+        for (const auto& o : around) {
+            free = std::min(free, distance_to_polygon(b, o));
+            across = std::min(across, ray_crossing(b, u, o, false));
+        }
+        move[k] = across >= setup.reach || free <= setup.wide ? 0.0 : std::min(free - setup.typical, kGapRadialShare * radius[k]);
+    }
+    // Eroded over the neighbouring directions: a move between a joint and a gap is the joint's.
+    std::array<double, K> eroded{};
+    double gain = 0.0, area = 0.0;
+    for (int k = 0; k < K; ++k) {
+        eroded[k] = std::min({move[k], move[(k + 1) % K], move[(k + K - 1) % K]});
+        gain += eroded[k] * radius[k];
+        area += 0.5 * radius[k] * radius[k];
+    }
+    if (!(gain >= kMinGapGain * area)) return false;
+    for (double share : {1.0, 0.75, 0.5, 0.25}) {
+        Mesh g = m;
+        for (Vec3& v : g.vertices) {
+            const Vec2 q = v.head<2>() - c;
+            const double r = q.norm();
+            if (!(r > 0.0)) continue;
+            double t = std::atan2(q.y(), q.x()) / (2.0 * M_PI) * K;
+            if (t < 0.0) t += K;
+            const int k0 = std::min(static_cast<int>(t), K - 1), k1 = (k0 + 1) % K;
+            const double w = t - k0;
+            const double rk = (1.0 - w) * radius[static_cast<std::size_t>(k0)] + w * radius[static_cast<std::size_t>(k1)];
+            if (!(rk > 0.0)) continue;
+            const double s = std::min(r / rk, 1.0);
+            const double to = r + share * ((1.0 - w) * eroded[static_cast<std::size_t>(k0)] + w * eroded[static_cast<std::size_t>(k1)]) * s * s;
+            v.x() = c.x() + q.x() / r * to;
+            v.y() = c.y() + q.y() / r * to;
         }
         if (mesh_area(g) > kMaxGrowth * source_area || !accept(g)) continue;
         *grown = std::move(g);

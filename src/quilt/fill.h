@@ -164,6 +164,24 @@ JointSetup prepare_joints(const SwatchData& swatch);
 bool grow_into_joints(const Mesh& m, const std::vector<std::vector<Vec2>>& around, const JointSetup& setup, double source_area,
                       const std::function<bool(const Mesh&)>& accept, Mesh* grown);
 
+/// Beyond the paper: gaps. Where three or more stones of different placements meet, the hole between
+/// them has no side to push (grow_into_joints moves straight sides across straight joints); so after
+/// the last placement each stone also grows radially. Seen from its hull's centre, in kGapDirections
+/// directions, the hull's boundary point moves outward by its distance to the nearest other hull less
+/// the swatch's typical joint (never by more than kGapRadialShare of its radius, and not at all where
+/// that distance is a narrow joint, at most setup.wide, or where the ray meets no hull within
+/// setup.reach: open ground, such as the base's boundary, is no gap). The
+/// moves are eroded over the neighbouring directions, then applied by a radial map (a vertex at
+/// relative radius s moves by s^2 of its direction's move: the centre stays, each ray keeps its order,
+/// so nothing folds) at full, three quarters, half and a quarter, until `accept` takes one within
+/// kMaxGrowth of `source_area`. A stone whose moves add less than kMinGapGain of its hull's area is
+/// left alone. Returns false when nothing was grown.
+inline constexpr int kGapDirections = 96;
+inline constexpr double kGapRadialShare = 0.35;
+inline constexpr double kMinGapGain = 0.02;
+bool grow_into_gaps(const Mesh& m, const std::vector<std::vector<Vec2>>& around, const JointSetup& setup, double source_area,
+                    const std::function<bool(const Mesh&)>& accept, Mesh* grown);
+
 /// The radius of the largest empty disc centred in [x0, x1] x [y0, y1] among the elements of `m`
 /// (xy projection, pixel resolution), with geometry anywhere in `m` counting.
 double largest_empty_radius(const Mesh& m, double x0, double y0, double x1, double y1, double pixel);

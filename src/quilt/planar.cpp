@@ -437,10 +437,11 @@ private:
     /// joint, by the smooth map of push_side; the element must stay within kMaxGrowth of its swatch
     /// element's area, collide with nothing and keep the clearance, or the growth is halved (twice)
     /// and then dropped. A porous pattern (pebbles) has a wide 90th percentile, and barely grows.
-    void close_wide_joints() {
+    /// With `gaps`, stones grow radially into the holes where several meet (quilt::grow_into_gaps).
+    void close_wide_joints(bool gaps) {
         if (!joints_.paving) return;
         auto t0 = Clock::now();
-        const double reach = joints_.reach, limit = joints_.limit;
+        const double reach = joints_.reach, limit = std::max(joints_.limit, gaps ? reach : 0.0);
         std::vector<int> ids;
         for (std::size_t id = 0; id < elems_.size(); ++id)
             if (elems_[id].alive && quilt::is_blob_source(sw_, elems_[id].source)) ids.push_back(static_cast<int>(id));
@@ -454,9 +455,10 @@ private:
                 if (o != id) around.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(o)].mesh));
             const int source = el.source;
             Mesh grown;
-            if (!quilt::grow_into_joints(
-                    el.mesh, around, joints_, mesh_area(sw_.elements[static_cast<std::size_t>(source)]),
-                    [&](const Mesh& g) { return !collider_.collides(g, {el.collider_id}) && keeps_gap(g, source, id); }, &grown))
+            const double source_area = mesh_area(sw_.elements[static_cast<std::size_t>(source)]);
+            auto accept = [&](const Mesh& g) { return !collider_.collides(g, {el.collider_id}) && keeps_gap(g, source, id); };
+            if (!(gaps ? quilt::grow_into_gaps(el.mesh, around, joints_, source_area, accept, &grown)
+                       : quilt::grow_into_joints(el.mesh, around, joints_, source_area, accept, &grown)))
                 continue;
             remove_element(id);
             add_element(grown, source);
@@ -468,8 +470,10 @@ private:
     void finish(QuiltResult& result) {
         fill_bald_spots();
         // Twice: a side held back by the growth cap or a neighbour's growth gets a second chance.
+        // Then the holes where several stones meet, twice too.
         joints_ = quilt::prepare_joints(sw_);
-        for (int pass = 0; pass < 2; ++pass) close_wide_joints();
+        for (int pass = 0; pass < 2; ++pass) close_wide_joints(false);
+        for (int pass = 0; pass < 2; ++pass) close_wide_joints(true);
         auto t0 = Clock::now();
         // Keep elements whose centroid lies in the footprint; remove those that are not whole.
         std::vector<int> kept;
