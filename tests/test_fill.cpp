@@ -298,12 +298,13 @@ double least_distance(const Mesh& m, const std::vector<Vec2>& poly) {
 TEST(Gaps, AStoneGrowsIntoTheHoleWhereThreeMeetAndKeepsItsJoints) {
     // Stone a = [0, 2]^2 with narrow joints (0.1) to a stone on its right and one above; both end
     // short of a's top right corner, and a third stands diagonally beyond it: a hole about 0.8 wide.
+    // Below a and left of it is open ground.
     quilt::JointSetup setup = test_joints();
     setup.reach = 1.5;
     const Mesh a = block(4, 0.5, Vec3(0, 0, 0));
-    const std::vector<std::vector<Vec2>> around{quilt::xy_hull(block(4, 0.55, Vec3(2.1, -1.0, 0))),   // [2.1, 4.3] x [-1, 1.2]
-                                                quilt::xy_hull(block(4, 0.55, Vec3(-1.0, 2.1, 0))),   // [-1, 1.2] x [2.1, 4.3]
-                                                quilt::xy_hull(block(4, 0.5, Vec3(2.6, 2.6, 0)))};    // [2.6, 4.6]^2
+    const std::vector<std::vector<Vec2>> around{quilt::xy_hull(block(4, 0.3, Vec3(2.1, 0.0, 0))),   // [2.1, 3.3] x [0, 1.2]
+                                                quilt::xy_hull(block(4, 0.3, Vec3(0.0, 2.1, 0))),   // [0, 1.2] x [2.1, 3.3]
+                                                quilt::xy_hull(block(4, 0.5, Vec3(2.6, 2.6, 0)))};  // [2.6, 4.6]^2
     double before = std::numeric_limits<double>::infinity();
     for (const auto& o : around) before = std::min(before, least_distance(a, o));
     ASSERT_NEAR(before, 0.1, 1e-9);

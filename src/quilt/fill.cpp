@@ -405,10 +405,13 @@ bool grow_into_gaps(const Mesh& m, const std::vector<std::vector<Vec2>>& around,
         const Vec2 u(std::cos(a), std::sin(a));
         radius[k] = ray_crossing(c, u, hull, true);
         const Vec2 b = c + radius[k] * u;
+        // Ahead: the nearest hull that rays along u and 30 degrees either side of it meet.
+        const std::array<Vec2, 3> ahead{u, Vec2(std::cos(a - kGapConeHalfAngle), std::sin(a - kGapConeHalfAngle)),
+                                        Vec2(std::cos(a + kGapConeHalfAngle), std::sin(a + kGapConeHalfAngle))};
         double free = setup.reach, across = setup.reach;
         for (const auto& o : around) {
             free = std::min(free, distance_to_polygon(b, o));
-            across = std::min(across, ray_crossing(b, u, o, false));
+            for (const Vec2& w : ahead) across = std::min(across, ray_crossing(b, w, o, false));
         }
         move[k] = across >= setup.reach || free <= setup.wide ? 0.0 : std::min(free - setup.typical, kGapRadialShare * radius[k]);
     }
