@@ -314,14 +314,15 @@ TEST(Gaps, AStoneGrowsIntoTheHoleWhereThreeMeetAndKeepsItsJoints) {
     EXPECT_EQ(asked, 1);
     EXPECT_TRUE(quilt::is_closed_oriented(grown));
     EXPECT_EQ(mq::count_self_intersections(grown), 0);
-    // Into the hole: the corner moved out along the diagonal, by at most a third of the half diagonal.
+    // Into the hole: the corner (at the half diagonal, sqrt 2, from the centre) moved out along the
+    // diagonal, by at most kGapRadialShare of that radius: x + y grows by at most 2 kGapRadialShare.
     const mq::Box3 box = mq::bounding_box(grown);
     EXPECT_GT(box.max.x(), 2.2);
     EXPECT_GT(box.max.y(), 2.2);
     double corner = 0.0;
     for (const Vec3& v : grown.vertices) corner = std::max(corner, v.x() + v.y());
     EXPECT_GT(corner, 4.4);
-    EXPECT_LE(corner, 4.0 + std::sqrt(2.0) * quilt::kGapRadialShare * std::sqrt(2.0) + 1e-9);
+    EXPECT_LE(corner, 4.0 + 2.0 * quilt::kGapRadialShare + 1e-9);
     // Every neighbour keeps at least the typical joint (up to the sampling of directions) ...
     for (const auto& o : around) EXPECT_GT(least_distance(grown, o), 0.9 * setup.typical);
     // ... and the sides facing narrow joints, the far sides and the height stay where they were.

@@ -317,6 +317,9 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     ASSERT_GT(hi, 0.0) << "no region of two footprints: choose a smaller scale";
     EXPECT_GE(lo, 0.85) << "a region is balder than the swatch";
     EXPECT_LE(hi, 1.15) << "a region is denser than the swatch";
+    // The paving's holes closed after the last patch lift its thinnest region (0.931; 0.891
+    // when only straight sides were pushed into joints).
+    if (c.swatch == "cobbles") EXPECT_GE(lo, 0.91) << "the holes between the patches' stones were left open";
 }
 
 INSTANTIATE_TEST_SUITE_P(
