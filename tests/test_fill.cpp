@@ -354,6 +354,26 @@ TEST(Gaps, AStoneGrowsIntoTheHoleWhereThreeMeetAndKeepsItsJoints) {
     EXPECT_NEAR(offered[2] - 4.0, 0.5 * (offered[0] - 4.0), 1e-9);  // half the move
 }
 
+// The hole's far side is two stones whose joint runs along the diagonal, straight away from a's
+// corner: the ray along it passes through the joint and meets nothing, but the rays beside it
+// (kGapConeHalfAngle) meet the two stones, so the hole is no open ground and the corner grows
+// (with the single ray it stayed: checked to fail).
+TEST(Gaps, AJointBeyondTheHoleDoesNotMakeItOpenGround) {
+    quilt::JointSetup setup = test_joints();
+    setup.reach = 3.0;  // the rays 30 degrees off the diagonal meet the far stones about 2.3 from the corner
+    const Mesh a = block(4, 0.5, Vec3(0, 0, 0));
+    const std::vector<std::vector<Vec2>> around{quilt::xy_hull(block(4, 0.3, Vec3(2.1, 0.0, 0))),  // [2.1, 3.3] x [0, 1.2]
+                                                quilt::xy_hull(block(4, 0.3, Vec3(0.0, 2.1, 0))),  // [0, 1.2] x [2.1, 3.3]
+                                                {Vec2(2.6, 2.7), Vec2(4.5, 4.6), Vec2(2.6, 4.6)},  // above y = x + 0.1
+                                                {Vec2(2.7, 2.6), Vec2(4.6, 2.6), Vec2(4.6, 4.5)}}; // below y = x - 0.1
+    Mesh grown;
+    ASSERT_TRUE(quilt::grow_into_gaps(a, around, setup, quilt::mesh_area(a), [](const Mesh&) { return true; }, &grown));
+    double corner = 0.0;
+    for (const Vec3& v : grown.vertices) corner = std::max(corner, v.x() + v.y());
+    EXPECT_GT(corner, 4.4);
+    for (const auto& o : around) EXPECT_GT(least_distance(grown, o), 0.9 * setup.typical);
+}
+
 TEST(Gaps, NarrowJointsOpenGroundAndNoPavingLeaveAStoneAlone) {
     quilt::JointSetup setup = test_joints();
     setup.reach = 1.5;
