@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -85,13 +87,33 @@ std::vector<char> rings_of(const mq::quilt::SwatchData& sw) {
     for (std::size_t s = 0; s < ring.size(); ++s) ring[s] = sw.element_genus[s] > 0;
     return ring;
 }
-}  // namespace
+
+// The same mesh with its vertices and faces listed in another order, and each face's corners
+// turned: what a swatch merged from an STL soup or written by another modeller looks like.
+Mesh shuffled(const Mesh& m, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::vector<int> order(m.vertices.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    Mesh out;
+    std::vector<int> where(m.vertices.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        where[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+        out.vertices.push_back(m.vertices[static_cast<std::size_t>(order[i])]);
+    }
+    for (const auto& f : m.faces) {
+        const int k = static_cast<int>(rng() % 3);
+        out.faces.push_back({where[static_cast<std::size_t>(f[k])], where[static_cast<std::size_t>(f[(k + 1) % 3])],
+                             where[static_cast<std::size_t>(f[(k + 2) % 3])]});
+    }
+    std::shuffle(out.faces.begin(), out.faces.end(), rng);
+    return out;
+}
 
 // Mending continues a chain mail's lattice from any standing ring (quilt::ring_lattice): a ring on
 // the swatch's border must propose the neighbours beyond that border too, not only those back inside
 // the swatch, and every proposal must be where the lattice has a ring.
-TEST(RingLattice, ContinuesPastTheSwatchBorder) {
-    const auto sw = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path("chainmail")));
+void expect_lattice_continues_past_border(const mq::quilt::SwatchData& sw) {
     const auto lattice = mq::quilt::ring_lattice(sw, rings_of(sw));
     const std::size_t S = sw.elements.size();
     ASSERT_GT(lattice.spacing, 0.0);
@@ -139,6 +161,43 @@ TEST(RingLattice, ContinuesPastTheSwatchBorder) {
     int lacking = 0;
     for (std::size_t s = 0; s < S; ++s) lacking += static_cast<int>(most - own[s]);
     EXPECT_EQ(shifted, lacking);
+}
+}  // namespace
+
+TEST(RingLattice, ContinuesPastTheSwatchBorder) {
+    expect_lattice_continues_past_border(mq::quilt::prepare_swatch(mq::read_mesh(swatch_path("chainmail"))));
+}
+
+// Rings are of one kind by their shape, not by the order their vertices and faces are listed in:
+// the bundled mail with every ring's vertices and faces in an order of their own has the same two
+// kinds and continues past its border the same way.
+TEST(RingLattice, KnowsTranslatesInAnyVertexOrder) {
+    const Mesh mail = mq::read_mesh(swatch_path("chainmail"));
+    for (unsigned seed : {1u, 2u}) {
+        SCOPED_TRACE(seed);
+        const auto sw = mq::quilt::prepare_swatch(shuffled(mail, seed));
+        ASSERT_EQ(sw.elements.size(), 36u);
+        expect_lattice_continues_past_border(sw);
+    }
+    // A ring moved off its plane's height, or one vertex moved by a hundredth of the spacing, is of
+    // a kind of its own.
+    const auto sw = mq::quilt::prepare_swatch(mail);
+    for (double lift : {0.0, 0.05}) {
+        Mesh two = sw.elements[0];
+        Mesh other = shapes::translated(sw.elements[12], Vec3(0.0, 0.0, lift));
+        if (lift == 0.0) other.vertices[5].x() += 0.0125;
+        two = shapes::concat(two, shapes::translated(other, Vec3(0.0, 4.0, 0.0)));
+        const auto pair = mq::quilt::prepare_swatch(two);
+        ASSERT_EQ(pair.elements.size(), 2u);
+        const auto lattice = mq::quilt::ring_lattice(pair, rings_of(pair));
+        ASSERT_EQ(lattice.kind.size(), 2u);
+        EXPECT_NE(lattice.kind[0], lattice.kind[1]) << "lift " << lift;
+        // Unchanged, the same two rings are one kind.
+        const auto same = mq::quilt::prepare_swatch(shapes::concat(sw.elements[0], shapes::translated(sw.elements[12], Vec3(0.0, 4.0, 0.0))));
+        const auto same_lattice = mq::quilt::ring_lattice(same, rings_of(same));
+        ASSERT_EQ(same_lattice.kind.size(), 2u);
+        EXPECT_EQ(same_lattice.kind[0], same_lattice.kind[1]);
+    }
 }
 
 // Rings that are no translates of one another (three tori of different sizes in a row) share no

@@ -186,6 +186,41 @@ std::vector<char> intersecting_to_remove(const std::vector<const Mesh*>& element
     return drop;
 }
 
+namespace {
+
+/// A ring's vertices about their mean, sorted by x, to tell whether another ring is the same one
+/// moved in the plane. Vertex and face order are not compared: a swatch merged from an STL soup, or
+/// written by another modeller, lists each copy of a ring in an order of its own.
+struct RingShape {
+    explicit RingShape(const Mesh& m) : faces(m.faces.size()) {
+        mean = Vec3::Zero();
+        for (const Vec3& v : m.vertices) mean += v;
+        if (!m.vertices.empty()) mean /= static_cast<double>(m.vertices.size());
+        rel.reserve(m.vertices.size());
+        for (const Vec3& v : m.vertices) rel.push_back(v - mean);
+        std::sort(rel.begin(), rel.end(), [](const Vec3& p, const Vec3& q) { return p.x() < q.x(); });
+    }
+    /// Same vertex and face counts, means at one height, and every vertex within `tol` of one of
+    /// `other`'s once both are taken about their means.
+    bool translate_of(const RingShape& other, double tol) const {
+        if (rel.size() != other.rel.size() || faces != other.faces || std::fabs(mean.z() - other.mean.z()) > tol) return false;
+        const auto by_x = [](const Vec3& p, double x) { return p.x() < x; };
+        for (const Vec3& p : rel) {
+            bool found = false;
+            for (auto it = std::lower_bound(other.rel.begin(), other.rel.end(), p.x() - tol, by_x);
+                 it != other.rel.end() && it->x() <= p.x() + tol && !found; ++it)
+                found = (*it - p).norm() <= tol;
+            if (!found) return false;
+        }
+        return true;
+    }
+    std::size_t faces;
+    Vec3 mean;
+    std::vector<Vec3> rel;
+};
+
+}  // namespace
+
 RingLattice ring_lattice(const SwatchData& swatch, const std::vector<char>& is_ring) {
     const std::size_t S = swatch.elements.size();
     RingLattice lattice;
@@ -209,25 +244,19 @@ RingLattice ring_lattice(const SwatchData& swatch, const std::vector<char>& is_r
     // Kinds: rings that are translates of one another in the plane.
     std::vector<int>& kind = lattice.kind;
     kind.assign(S, -1);
-    std::vector<std::size_t> first_of_kind;
+    std::vector<RingShape> kinds;
     for (std::size_t s = 0; s < S; ++s) {
         if (!ring(s)) continue;
-        const Mesh& a = swatch.elements[s];
-        for (std::size_t k = 0; k < first_of_kind.size() && kind[s] < 0; ++k) {
-            const Mesh& b = swatch.elements[first_of_kind[k]];
-            if (a.vertices.size() != b.vertices.size() || a.faces != b.faces) continue;
-            const Vec3 d = a.vertices.front() - b.vertices.front();
-            bool same = std::fabs(d.z()) <= tol;
-            for (std::size_t v = 0; v < a.vertices.size() && same; ++v) same = (a.vertices[v] - b.vertices[v] - d).norm() <= tol;
-            if (same) kind[s] = static_cast<int>(k);
-        }
+        RingShape a(swatch.elements[s]);
+        for (std::size_t k = 0; k < kinds.size() && kind[s] < 0; ++k)
+            if (a.translate_of(kinds[k], tol)) kind[s] = static_cast<int>(k);
         if (kind[s] < 0) {
-            kind[s] = static_cast<int>(first_of_kind.size());
-            first_of_kind.push_back(s);
+            kind[s] = static_cast<int>(kinds.size());
+            kinds.push_back(std::move(a));
         }
     }
     // Each kind's neighbours: (offset, a ring of the neighbour's kind), once per offset and kind.
-    std::vector<std::vector<std::pair<Vec2, std::size_t>>> offsets(first_of_kind.size());
+    std::vector<std::vector<std::pair<Vec2, std::size_t>>> offsets(kinds.size());
     for (std::size_t s = 0; s < S; ++s)
         for (std::size_t t = 0; t < S && ring(s); ++t) {
             if (t == s || !ring(t) || (centre[s] - centre[t]).norm() >= 1.5 * lattice.spacing) continue;

@@ -106,10 +106,10 @@ struct RingLattice {
 
 /// The lattice of the elements flagged in `is_ring`: each ring's neighbours are the rings within
 /// 1.5 spacings of it. Rings that are translates of one another (the same vertices up to a shift in
-/// the plane, within a thousandth of the spacing) are of one kind and share their neighbours: a ring
-/// on the swatch's border also gets those an interior ring of its kind has beyond that border
-/// (another ring of the right kind, shifted there), so the lattice goes on past the swatch's edge.
-/// Rings of no repeated kind keep the neighbours the swatch has.
+/// the plane, within a thousandth of the spacing, in any vertex and face order) are of one kind and
+/// share their neighbours: a ring on the swatch's border also gets those an interior ring of its
+/// kind has beyond that border (another ring of the right kind, shifted there), so the lattice goes
+/// on past the swatch's edge. Rings of no repeated kind keep the neighbours the swatch has.
 RingLattice ring_lattice(const SwatchData& swatch, const std::vector<char>& is_ring);
 
 /// The elements to remove so that no two of `elements` intersect (exact tests): of each
