@@ -634,6 +634,30 @@ TEST(Cells, SliversOnACubeAreRemeshedKeepingItsEdgesAndCorners) {
     EXPECT_NEAR(enclosed_volume(cells), 8.0, 1e-9);
 }
 
+// A base that is thin faces all over is remeshed even where its clusters are small: the fan cube,
+// one cluster of 24 area units, is under half a footprint (26 units) with cells of 1.2, where a few
+// slivers amid well-shaped faces would be left (kThinClusterFootprints), but its thin faces cover
+// all of it (kThinBaseShare): slivers crumple the shell map's prisms wherever they lie.
+TEST(Cells, ABaseRiddledWithSliversIsRemeshedWhateverItsClusters) {
+    const Mesh cube = shapes::fan_cube(2.0, 24);
+    const double cell = 1.2;
+    ASSERT_LT(total_area(cube), mq::quilt::kThinClusterFootprints * 36.0 * cell * cell);
+    std::vector<int> parent;
+    int thin = -1;
+    const Mesh cells = mq::quilt::refine_long_edges(cube, cell, &parent, &thin);
+    EXPECT_EQ(thin, static_cast<int>(cube.faces.size()));
+    EXPECT_TRUE(mq::test::is_closed_manifold(cells));
+    // Remeshed at the slivers' mean area (edges of about 0.155), along kept cube edges split every 0.083:
+    // a few faces at the edges stay narrow (measured: smallest angle 6.4 degrees, 0.6% of the
+    // angles under 10 degrees; the input's are all under 4).
+    std::printf("riddled cube: %zu cells, smallest angle %.1f, %.2f%% of the angles under 10 degrees\n", cells.faces.size(),
+                smallest_angle_degrees(cells), 100.0 * share_of_angles_below(cells, 10.0));
+    EXPECT_GT(smallest_angle_degrees(cells), 5.0);
+    EXPECT_LT(share_of_angles_below(cells, 10.0), 0.02);
+    for (const Vec3& v : cells.vertices) EXPECT_NEAR(v.cwiseAbs().maxCoeff(), 1.0, 1e-12);
+    EXPECT_NEAR(enclosed_volume(cells), 8.0, 1e-9);
+}
+
 TEST(Cells, AWellShapedBaseIsOnlySplit) {
     // No thin face: nothing is remeshed, and every input vertex stays where it was.
     const Mesh sphere = isect::icosphere(1.0, 3);
@@ -645,7 +669,8 @@ TEST(Cells, AWellShapedBaseIsOnlySplit) {
     for (const Vec3& v : sphere.vertices) EXPECT_TRUE(has_vertex_at(cells, v));
     EXPECT_NEAR(total_area(cells), total_area(sphere), 1e-9);
     // The eight's 16 thin faces (5-10 degrees, 3.5-4.5 cells long at scale 0.2) lie in clusters of
-    // at most 0.05 footprints, each within one patch: left as they are (kThinClusterFootprints).
+    // at most 0.05 footprints, each within one patch, and cover 2% of it: left as they are
+    // (kThinClusterFootprints, kThinBaseShare).
     const Mesh eight = mq::read_mesh(surface_data_path("eight.obj"));
     const double cell = 0.2 * diagonal(eight) / 6.0;
     const Mesh eight_cells = mq::quilt::refine_long_edges(eight, cell, &parent, &thin);

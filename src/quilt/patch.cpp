@@ -108,15 +108,21 @@ int remesh_thin_faces(SM& sm, double max_length) {
     auto in_region = sm.add_property_map<SM::Face_index, char>("f:thin_region", 0).first;
     auto is_thin = sm.add_property_map<SM::Face_index, char>("f:thin", 0).first;
     bool any = false;
+    double total_area = 0.0, thin_area = 0.0;
     for (SM::Face_index f : sm.faces()) {
         const auto [sine, longest] = thinness(sm, f);
+        const double area = PMP::face_area(f, sm);
+        total_area += area;
         if (sine < min_sine && longest > kThinFaceMinLength * max_length) {
             is_thin[f] = 1;
             any = true;
+            thin_area += area;
         }
     }
     // Clusters of thin faces (sharing edges) smaller than kThinClusterFootprints of a footprint (six
-    // cells across) lie within one patch among well-shaped faces, and are left as they are.
+    // cells across) lie within one patch among well-shaped faces, and are left as they are, unless
+    // thin faces cover kThinBaseShare of the base or more.
+    const bool all_clusters = thin_area >= kThinBaseShare * total_area;
     std::vector<SM::Face_index> thin;
     if (any) {
         auto seen = sm.add_property_map<SM::Face_index, char>("f:seen", 0).first;
@@ -136,7 +142,7 @@ int remesh_thin_faces(SM& sm, double max_length) {
                     }
                 }
             }
-            if (area >= kThinClusterFootprints * footprint) thin.insert(thin.end(), cluster.begin(), cluster.end());
+            if (all_clusters || area >= kThinClusterFootprints * footprint) thin.insert(thin.end(), cluster.begin(), cluster.end());
         }
         sm.remove_property_map(seen);
     }

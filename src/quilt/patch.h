@@ -27,6 +27,14 @@ inline constexpr double kThinFaceMinLength = 0.25;
 /// harmless there: remeshing the eight's 14 clusters of at most 0.05 footprints cost its chain mail
 /// a tenth of its rings linked with 4 others, docs/surface.md step 1).
 inline constexpr double kThinClusterFootprints = 0.5;
+/// ... unless thin faces cover at least this share of the base's area: then every cluster is
+/// remeshed, whatever its size. A base riddled with small clusters of slivers (a CSG union whose
+/// long edges were split) crumples the shell map: a sliver's prism inverts as soon as the offset
+/// directions at its corners differ by a little, and the lowering spreads from each one (a genus-3
+/// union of washers with chain mail at scale 0.12: shell lowered over 56% of the area, lowest
+/// region 0.585; every cluster remeshed, 6.7% and 0.74). The shared meshes' thin faces cover at
+/// most 2% (the eight), and stay as they were.
+inline constexpr double kThinBaseShare = 0.05;
 /// The remeshed regions' edge, at most (as a share of the cell edge).
 inline constexpr double kThinFaceTarget = 0.75;
 /// Dihedral angle (degrees) beyond which an edge is sharp and is kept by the remeshing of thin faces.
