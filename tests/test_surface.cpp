@@ -791,6 +791,43 @@ TEST(SurfaceField, WithoutAFieldNeighboursAgreeUpToTheSwatchSymmetry) {
 // rings fit, which is a result with a warning that names the density reached. The bars' long faces
 // (two triangles each) are thin and get remeshed (quilt::refine_long_edges): since then rings wrap
 // around a bar 0.6 wide at 0.94 of the swatch's density (0.19 on a bar 1.0 wide before).
+// The default scale suits swatches of a few dozen elements; a dense swatch would make tens of
+// millions of faces there (300 packed spheres: 22-32 million on the shared meshes). Left to the
+// default, the footprint grows until the estimated output fits the face budget, with a warning; a
+// scale the caller gives is kept. (The budget is 4 million faces; here 100,000, for a fast test.)
+TEST(SurfaceScale, ADenseSwatchRaisesTheDefaultScaleToTheFaceBudget) {
+    const Mesh sw = mq::read_mesh(swatch_path("pebbles"));
+    const Mesh sphere = isect::icosphere(1.0, 2);
+    mq::SurfaceQuiltOptions o;
+    EXPECT_FALSE(o.scale.has_value());
+    EXPECT_EQ(o.default_face_budget, 4e6);
+    o.default_face_budget = 1e5;
+    o.embedding = mq::Embedding::Normal;
+    const auto r = mq::quilt_surface(sphere, sw, o);
+    // At 0.08 the sphere would hold about 1.3 million faces of pebbles: the scale is raised by about
+    // the square root of 13.
+    std::printf("raised: scale %.4f, %d faces, %d elements\n", r.surface.scale, r.report.faces, r.report.elements);
+    EXPECT_GT(r.surface.scale, 3.0 * mq::kDefaultScale);
+    EXPECT_LT(r.surface.scale, 4.5 * mq::kDefaultScale);
+    EXPECT_GT(r.report.faces, 50000);
+    EXPECT_LT(r.report.faces, 130000);
+    EXPECT_EQ(r.surface.base_faces_processed, r.surface.base_faces);
+    const bool warned = std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+        return w.find("the scale was raised to") != std::string::npos && w.find("pass --scale") != std::string::npos &&
+               w.find("7560 faces") != std::string::npos;
+    });
+    EXPECT_TRUE(warned);
+    // The same scale given: kept exactly, even with a budget it would pass, and no warning.
+    o.scale = r.surface.scale;
+    o.default_face_budget = 5e4;
+    const auto given = mq::quilt_surface(sphere, sw, o);
+    EXPECT_EQ(given.surface.scale, *o.scale);
+    for (const std::string& w : given.warnings) EXPECT_EQ(w.find("raised"), std::string::npos) << w;
+    EXPECT_EQ(given.report.faces, r.report.faces);  // the same footprint: the same output
+    o.default_face_budget = -1.0;
+    EXPECT_TRUE(mq::test::throws_with<mq::InvalidInput>([&] { (void)mq::quilt_surface(sphere, sw, o); }, {"face budget"}));
+}
+
 TEST(SurfaceErrors, ASwatchTooLargeForTheBaseIsAnErrorOrAWarning) {
     const Mesh chainmail = mq::read_mesh(swatch_path("chainmail"));
     mq::SurfaceQuiltOptions o;

@@ -17,7 +17,7 @@ namespace meshquilt::cli {
 namespace {
 struct SurfaceArgs {
     std::string base, swatch, output, report, field, embed = "shell";
-    double scale = 0.08, swatch_size = 0.0, height = 0.0;
+    double scale = kDefaultScale, swatch_size = 0.0, height = 0.0;
     int symmetry = 0;
     std::uint64_t seed = 1;
     bool with_base = false, repair = false, no_optimise = false;
@@ -39,8 +39,9 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
     app->add_option("base", a->base, "Base mesh (OBJ, PLY, STL, OFF) to decorate; it is never changed")->required();
     app->add_option("swatch", a->swatch, "Swatch mesh: a slab of separate elements")->required();
     auto* out_opt = app->add_option("-o,--output", a->output, "Output mesh (.obj with one group per element, .ply, .stl)");
-    auto* scale = app->add_option("--scale", a->scale, "Swatch footprint's longer side as a fraction of the base's bounding-box diagonal")
-                      ->capture_default_str();
+    auto* scale = app->add_option("--scale", a->scale,
+                                  "Swatch footprint's longer side as a fraction of the base's bounding-box diagonal (default: " +
+                                      num(kDefaultScale) + ", raised for a swatch so dense that the output would pass 4 million faces)");
     app->add_option("--swatch-size", a->swatch_size, "Swatch footprint's longer side in base units (instead of --scale)")->excludes(scale);
     app->add_option("--height", a->height, "Shell height in base units (default: the swatch's thickness at that scale)");
     app->add_option("--field", a->field, "Guidance field file (face/vertex vectors or strokes; see docs/surface.md)");
@@ -60,7 +61,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
                                       "separate: the elements only); needs --size-mm or --unit-mm");
     add_print_options(app, a->print, false);
     app->add_option("--print-report", a->print_report, "Write the print's JSON report here");
-    commands.push_back({app, [a, out_opt, print_opt]() {
+    commands.push_back({app, [a, out_opt, print_opt, scale]() {
         if (out_opt->count() == 0 && print_opt->count() == 0) throw InvalidInput("give an output: -o OUT (mesh) and/or --print OUT.3mf|OUT.stl");
         if (print_opt->count() > 0) check_print_args(a->print);
         // decorate() validates (and with --repair repairs) the inputs, exactly as for the Python module.
@@ -71,7 +72,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         d.swatch_name = a->swatch;
         d.repair = a->repair;
         SurfaceQuiltOptions& o = d.surface;
-        o.scale = a->scale;
+        if (scale->count() > 0) o.scale = a->scale;
         o.swatch_size = a->swatch_size;
         o.height = a->height;
         o.symmetry = a->symmetry;
@@ -100,7 +101,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
             wo.group_names.back() = "base";
         }
         wo.comment = "meshquilt " + a->base + " " + a->swatch +
-                     (a->swatch_size > 0 ? " --swatch-size " + num(a->swatch_size) : " --scale " + num(a->scale)) +
+                     (a->swatch_size > 0 ? " --swatch-size " + num(a->swatch_size) : " --scale " + num(r.surface.scale)) +
                      (a->height > 0 ? " --height " + num(a->height) : "") + " --seed " + std::to_string(a->seed);
         if (!a->output.empty()) write_mesh(a->output, out, wo);
         if (!a->report.empty()) write_file_atomic(a->report, report_json(r));

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,9 +51,18 @@ enum class Embedding {
     Normal,  ///< displacement along interpolated vertex normals (cuts into concave regions)
 };
 
+/// The default of SurfaceQuiltOptions::scale: about 150 footprints on a compact shape.
+inline constexpr double kDefaultScale = 0.08;
+
 struct SurfaceQuiltOptions {
-    /// Swatch footprint's longer side as a fraction of the base's bounding-box diagonal.
-    double scale = 0.08;
+    /// Swatch footprint's longer side as a fraction of the base's bounding-box diagonal. Unset (and
+    /// no `swatch_size`): kDefaultScale, raised where the output would hold more than
+    /// `default_face_budget` faces (a dense swatch).
+    std::optional<double> scale;
+    /// With the scale left unset: the most output faces (estimated) the default scale may give; the
+    /// footprint grows until the estimate fits, with a warning. A swatch of 300 packed spheres of 320
+    /// faces each would give 22-32 million faces at 0.08 on the shared test meshes. 0: no budget.
+    double default_face_budget = 4e6;
     /// Swatch footprint's longer side in base units; > 0 overrides `scale`.
     double swatch_size = 0.0;
     /// Shell height in base units; <= 0: the swatch's thickness at the chosen scale.
@@ -100,6 +110,7 @@ struct SurfaceQualityReport {
     int rings_unlinked_removed = 0;  ///< interlocking swatches: rings that linked with no other ring, removed before mending
     int symmetry = 0;              ///< N of the N-direction field used
     double base_scale = 0.0;       ///< base units per swatch unit
+    double scale = 0.0;            ///< the footprint's longer side used, over the base's bounding-box diagonal
     double swatch_density = 0.0;   ///< element area per footprint area in the swatch
     /// Element area per base area over a partition of the surface into regions of about 4 swatch
     /// footprints, divided by the swatch's: smallest and largest over regions.

@@ -292,7 +292,7 @@ void add_field(std::vector<Value>& out, const py::object& array, std::size_t cou
 }
 
 Result decorate_py(const py::object& base_vertices, const py::object& base_faces, const py::object& swatch_vertices,
-                   const py::object& swatch_faces, double scale, const std::optional<double>& swatch_size, const std::optional<double>& height,
+                   const py::object& swatch_faces, const std::optional<double>& scale, const std::optional<double>& swatch_size, const std::optional<double>& height,
                    const py::object& seed, int symmetry, const std::string& embed, bool optimise_shell,
                    const py::object& field_vertices, const py::object& field_faces, bool repair, const py::object& progress,
                    const py::object& log) {
@@ -301,7 +301,8 @@ Result decorate_py(const py::object& base_vertices, const py::object& base_faces
     DecorateOptions o;
     o.repair = repair;
     SurfaceQuiltOptions& s = o.surface;
-    if (!std::isfinite(scale) || scale <= 0.0) throw InvalidInput("scale must be a positive finite number, got " + std::to_string(scale));
+    if (scale && (!std::isfinite(*scale) || *scale <= 0.0))
+        throw InvalidInput("scale must be a positive finite number, got " + std::to_string(*scale));
     s.scale = scale;
     s.swatch_size = positive_or_none(swatch_size, "swatch_size");
     s.height = positive_or_none(height, "height");
@@ -481,7 +482,7 @@ PYBIND11_MODULE(_meshquilt, m) {
         });
 
     m.def("decorate", &decorate_py, "Cover a base mesh with a geometric texture grown from a swatch (the main job). Returns a Result.", py::arg("base_vertices"), py::arg("base_faces"), py::arg("swatch_vertices"),
-          py::arg("swatch_faces"), py::kw_only(), py::arg("scale") = 0.08, py::arg("swatch_size") = py::none(),
+          py::arg("swatch_faces"), py::kw_only(), py::arg("scale") = py::none(), py::arg("swatch_size") = py::none(),
           py::arg("height") = py::none(), py::arg("seed") = 1, py::arg("symmetry") = 0, py::arg("embed") = "shell",
           py::arg("optimise_shell") = true, py::arg("field_vertices") = py::none(), py::arg("field_faces") = py::none(),
           py::arg("repair") = false, py::arg("progress") = py::none(), py::arg("log") = py::none());

@@ -114,6 +114,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"ring_holes_filled", s.ring_holes_filled},
                         {"rings_unlinked_removed", s.rings_unlinked_removed},
                         {"symmetry", s.symmetry},
+                        {"scale", s.scale},
                         {"base_units_per_swatch_unit", s.base_scale},
                         {"region_density_min", s.region_density_min},
                         {"region_density_max", s.region_density_max},

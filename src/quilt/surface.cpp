@@ -357,8 +357,10 @@ public:
 private:
     void validate_options() const {
         auto bad = [](double v) { return !std::isfinite(v); };
-        if (bad(opt_.scale) || opt_.scale <= 0.0 || opt_.scale > 2.0)
-            throw InvalidInput("scale must be in (0, 2] (a fraction of the base's bounding-box diagonal), got " + num(opt_.scale));
+        if (opt_.scale && (bad(*opt_.scale) || *opt_.scale <= 0.0 || *opt_.scale > 2.0))
+            throw InvalidInput("scale must be in (0, 2] (a fraction of the base's bounding-box diagonal), got " + num(*opt_.scale));
+        if (bad(opt_.default_face_budget) || opt_.default_face_budget < 0.0)
+            throw InvalidInput("the default face budget must be positive or 0, got " + num(opt_.default_face_budget));
         if (bad(opt_.swatch_size) || opt_.swatch_size < 0.0) throw InvalidInput("swatch size must be positive, got " + num(opt_.swatch_size));
         if (bad(opt_.height) || opt_.height < 0.0) throw InvalidInput("height must be positive, got " + num(opt_.height));
         if (!(opt_.symmetry == 0 || opt_.symmetry == 1 || opt_.symmetry == 2 || opt_.symmetry == 4 || opt_.symmetry == 6))
@@ -416,7 +418,22 @@ private:
         const Box3 box = bounding_box(m);
         diagonal_ = box.size().norm();
         if (!(diagonal_ > 0)) throw InvalidInput("base has zero extent");
-        const double fp = opt_.swatch_size > 0 ? opt_.swatch_size : opt_.scale * diagonal_;
+        double fp = opt_.swatch_size > 0 ? opt_.swatch_size : opt_.scale.value_or(kDefaultScale) * diagonal_;
+        // Beyond the paper: the default scale suits swatches of a few dozen elements; a dense one
+        // (hundreds of elements, or many faces each) would make tens of millions of faces there. Left
+        // to the default, the footprint grows until the estimated output fits the budget.
+        const double swatch_faces = static_cast<double>(sw_.mesh.faces.size());
+        const double swatch_xy = sw_.box.size().x() * sw_.box.size().y() / std::pow(std::max(sw_.box.size().x(), sw_.box.size().y()), 2);
+        auto faces_at = [&](double footprint) { return an.area / (swatch_xy * footprint * footprint) * swatch_faces; };
+        if (!opt_.scale && !(opt_.swatch_size > 0) && opt_.default_face_budget > 0 && faces_at(fp) > opt_.default_face_budget) {
+            const double before = faces_at(fp);
+            fp *= std::sqrt(before / opt_.default_face_budget);
+            warnings_.push_back("the swatch has " + std::to_string(sw_.mesh.faces.size()) + " faces: at the default scale " + num(kDefaultScale) +
+                                " the output would hold about " + num(std::round(before / 1e5) / 10.0) + " million faces, so the scale was raised to " +
+                                num(fp / diagonal_) + " (about " + num(std::round(faces_at(fp) / 1e5) / 10.0) +
+                                " million); pass --scale or --swatch-size to choose");
+        }
+        surface_.scale = fp / diagonal_;
         scale_ = fp / std::max(sw_.box.size().x(), sw_.box.size().y());  // base units per swatch unit
         const double thickness = sw_.box.size().z();
         height_scale_ = opt_.height > 0 ? opt_.height / std::max(thickness, 1e-300) : 0.0;
