@@ -60,6 +60,9 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
+    // The scale given is the scale used, and the output file's header records it.
+    EXPECT_DOUBLE_EQ(j.at("surface").at("scale").get<double>(), 0.3);
+    EXPECT_NE(sa.find("--scale 0.3 --seed 3"), std::string::npos);
     EXPECT_EQ(j.at("elements_closed").get<int>(), j.at("elements").get<int>());
     // The shell map is the default embedding; its report (issue 4).
     EXPECT_EQ(j.at("surface").at("embedding").get<std::string>(), "shell");
