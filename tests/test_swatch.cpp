@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <set>
@@ -79,6 +80,53 @@ TEST(SwatchData, KnowsANetSpansTheSwatch) {
     ASSERT_EQ(net.elements.size(), 1u);
     EXPECT_NEAR(net.largest_element_cover, 1.0, 1e-9);
     EXPECT_TRUE(net.spans_swatch());
+}
+
+namespace {
+Mesh turned(Mesh m, double degrees) {
+    const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
+    for (Vec3& v : m.vertices) v = Vec3(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
+    return m;
+}
+}  // namespace
+
+// A weave turned in its plane has no thread whose xy box is long, so none would be known as a
+// thread (quilt::is_elongated): the swatch is turned back so that its threads run along x and y
+// (planar quilting of the bundled weave turned by 30 degrees: 0.46 of the density before, 0.91
+// after). Swatches whose threads run along their axes, and threads that run diagonally across a
+// swatch cut square around them, are left as they are.
+TEST(SwatchData, TurnsAWeaveWhoseThreadsRunAtAnAngle) {
+    const Mesh weave = mq::read_mesh(swatch_path("weave"));
+    const auto straight = mq::quilt::prepare_swatch(weave);
+    EXPECT_EQ(straight.turn, 0.0);
+    for (double degrees : {30.0, -20.0, 60.0}) {
+        SCOPED_TRACE(degrees);
+        const auto sw = mq::quilt::prepare_swatch(turned(weave, degrees));
+        // Turned back modulo 90 degrees (60 comes back as -30 more: the threads run along y and x).
+        const double back = degrees > 45.0 ? 90.0 - degrees : -degrees;
+        EXPECT_NEAR(sw.turn * 180.0 / M_PI, back, 0.5);
+        ASSERT_EQ(sw.elements.size(), 14u);
+        for (const Mesh& e : sw.elements) EXPECT_TRUE(mq::quilt::is_elongated(e));
+        EXPECT_NEAR(sw.box.size().x() * sw.box.size().y(), straight.box.size().x() * straight.box.size().y(),
+                    0.02 * straight.box.size().x() * straight.box.size().y());
+        EXPECT_NEAR(sw.box.min.x(), 0.0, 1e-12);
+        EXPECT_NEAR(sw.box.min.y(), 0.0, 1e-12);
+    }
+    for (const char* name : {"chainmail", "pebbles", "rivets", "cobbles", "scales"})
+        EXPECT_EQ(mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name))).turn, 0.0) << name;
+    // Five bars along the diagonal of a 10 x 10 square, cut to it: threads at 45 degrees, but turned
+    // the square's box would grow (to about 14 x 13), so they stay.
+    Mesh bars;
+    for (double d : {-6.0, -3.0, 0.0, 3.0, 6.0}) {
+        const double length = 2.0 * (5.0 * std::sqrt(2.0) - std::fabs(d)) - 0.4;
+        Mesh bar = shapes::cube(1.0);
+        for (Vec3& v : bar.vertices) v = Vec3((v.x() - 0.5) * length, (v.y() - 0.5) * 0.5, v.z() * 0.3);
+        bar = turned(bar, 45.0);
+        bars = shapes::concat(bars, shapes::translated(bar, Vec3(5.0 - d / std::sqrt(2.0), 5.0 + d / std::sqrt(2.0), 0.0)));
+    }
+    const auto diagonal = mq::quilt::prepare_swatch(bars);
+    ASSERT_EQ(diagonal.elements.size(), 5u);
+    EXPECT_EQ(diagonal.turn, 0.0);
 }
 
 namespace {

@@ -6,6 +6,8 @@
 #include "meshquilt/quilt.h"
 #include "quilt/kernel.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -54,12 +56,92 @@ Mesh translated(const Mesh& m, const Vec3& t) {
 }
 
 
+namespace {
+
+/// Beyond the paper: the in-plane turn that makes a swatch's threads run along x and y, when the
+/// swatch was turned in its plane (its threads at an angle to its axes, so that no thread's xy box
+/// is long: is_elongated knows threads by their box). The threads' principal axes (genus-0
+/// components more than 3 times longer than wide along them) vote by length for an angle modulo
+/// 90 degrees (warp and weft alike). The turn is taken only when the votes agree, it is more than a
+/// degree, and it shrinks the footprint to kAlignedFootprint of its area or less: a swatch cut square
+/// around diagonal threads stays as it is (turned, its box would grow). 0 when not turned.
+double thread_turn(const Mesh& m, const std::vector<int>& comp, int count) {
+    const auto n = static_cast<std::size_t>(count);
+    std::vector<std::vector<int>> verts(n);
+    std::vector<long> faces(n, 0);
+    std::vector<int> owner(m.vertices.size(), -1);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        const auto c = static_cast<std::size_t>(comp[f]);
+        ++faces[c];
+        for (int k = 0; k < 3; ++k) {
+            const int v = m.faces[f][k];
+            if (owner[static_cast<std::size_t>(v)] < 0) {
+                owner[static_cast<std::size_t>(v)] = comp[f];
+                verts[c].push_back(v);
+            }
+        }
+    }
+    double vc = 0.0, vs = 0.0, total = 0.0;
+    int threads = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+        if (verts[c].size() < 3 || 2 * static_cast<long>(verts[c].size()) <= faces[c]) continue;  // rings are no threads
+        Vec2 mean = Vec2::Zero();
+        for (int v : verts[c]) mean += m.vertices[static_cast<std::size_t>(v)].head<2>();
+        mean /= static_cast<double>(verts[c].size());
+        Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+        for (int v : verts[c]) {
+            const Vec2 q = m.vertices[static_cast<std::size_t>(v)].head<2>() - mean;
+            cov += q * q.transpose();
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+        const Vec2 along = eig.eigenvectors().col(1), across = eig.eigenvectors().col(0);
+        double lo_a = std::numeric_limits<double>::infinity(), hi_a = -lo_a, lo_c = lo_a, hi_c = -lo_a;
+        for (int v : verts[c]) {
+            const Vec2 p = m.vertices[static_cast<std::size_t>(v)].head<2>();
+            lo_a = std::min(lo_a, along.dot(p));
+            hi_a = std::max(hi_a, along.dot(p));
+            lo_c = std::min(lo_c, across.dot(p));
+            hi_c = std::max(hi_c, across.dot(p));
+        }
+        const double length = hi_a - lo_a;
+        if (!(length > 3.0 * (hi_c - lo_c))) continue;
+        const double angle = std::atan2(along.y(), along.x());
+        vc += length * std::cos(4.0 * angle);
+        vs += length * std::sin(4.0 * angle);
+        total += length;
+        ++threads;
+    }
+    if (threads < 2 || std::hypot(vc, vs) < kAlignedAgreement * total) return 0.0;
+    const double turn = -std::atan2(vs, vc) / 4.0;
+    if (std::fabs(turn) < M_PI / 180.0) return 0.0;
+    auto footprint = [&](double t) {
+        const double c = std::cos(t), sn = std::sin(t);
+        Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (const Vec3& v : m.vertices) {
+            const Vec2 p(c * v.x() - sn * v.y(), sn * v.x() + c * v.y());
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        }
+        return (hi - lo).prod();
+    };
+    return footprint(turn) <= kAlignedFootprint * footprint(0.0) ? turn : 0.0;
+}
+
+}  // namespace
+
 SwatchData prepare_swatch(const Mesh& input) {
     SwatchData s;
     s.mesh = meshquilt::normalize_swatch(input);
-    s.box = bounding_box(s.mesh);
     int count = 0;
-    const std::vector<int> comp = connected_components(s.mesh, &count);
+    std::vector<int> comp = connected_components(s.mesh, &count);
+    s.turn = thread_turn(s.mesh, comp, count);
+    if (s.turn != 0.0) {
+        const double c = std::cos(s.turn), sn = std::sin(s.turn);
+        for (Vec3& v : s.mesh.vertices) v = Vec3(c * v.x() - sn * v.y(), sn * v.x() + c * v.y(), v.z());
+        s.mesh = meshquilt::normalize_swatch(s.mesh);  // back to the origin; z stays the thin axis
+        comp = connected_components(s.mesh, &count);
+    }
+    s.box = bounding_box(s.mesh);
     std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(count));
     for (std::size_t f = 0; f < comp.size(); ++f) faces_of[static_cast<std::size_t>(comp[f])].push_back(static_cast<int>(f));
     for (const auto& fl : faces_of) {

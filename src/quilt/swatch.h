@@ -44,8 +44,17 @@ struct SwatchData {
     /// through its many bars do not pair up), so a smaller scale does not cover more.
     double largest_element_cover = 0.0;
     bool spans_swatch() const { return largest_element_cover >= kSpanningCover; }
+    /// The in-plane turn (radians, about z) applied after normalize_swatch so that the swatch's
+    /// threads run along x and y (see kAlignedAgreement); 0 for most swatches.
+    double turn = 0.0;
     static constexpr double kSpanningCover = 0.5;
 };
+
+/// A swatch whose threads run at an angle to its axes is turned in its plane when its threads'
+/// directions (modulo 90 degrees, weighted by length) agree this well (resultant over total)...
+inline constexpr double kAlignedAgreement = 0.9;
+/// ... and the turn shrinks its footprint (xy bounding box) to this share or less.
+inline constexpr double kAlignedFootprint = 0.9;
 
 inline constexpr double kLayeredOverlap = 0.05;
 inline constexpr double kLayeredShare = 0.25;
