@@ -3,8 +3,10 @@
 // The swatch as the synthesis sees it (quilt/swatch.h): elements, their genus, the gaps between them.
 
 #include "meshquilt/io.h"
+#include "meshquilt/quilt.h"
 #include "quilt/kernel.h"
 #include "quilt/swatch.h"
+#include "support/checkers.h"
 #include "support/paths.h"
 #include "support/shapes.h"
 
@@ -99,12 +101,14 @@ TEST(SwatchData, TurnsAWeaveWhoseThreadsRunAtAnAngle) {
     const Mesh weave = mq::read_mesh(swatch_path("weave"));
     const auto straight = mq::quilt::prepare_swatch(weave);
     EXPECT_EQ(straight.turn, 0.0);
+    EXPECT_TRUE(straight.turn_warning().empty());
     for (double degrees : {30.0, -20.0, 60.0}) {
         SCOPED_TRACE(degrees);
         const auto sw = mq::quilt::prepare_swatch(turned(weave, degrees));
         // Turned back modulo 90 degrees (60 comes back as -30 more: the threads run along y and x).
         const double back = degrees > 45.0 ? 90.0 - degrees : -degrees;
         EXPECT_NEAR(sw.turn * 180.0 / M_PI, back, 0.5);
+        EXPECT_NE(sw.turn_warning().find("it was turned in its plane"), std::string::npos);
         ASSERT_EQ(sw.elements.size(), 14u);
         for (const Mesh& e : sw.elements) EXPECT_TRUE(mq::quilt::is_elongated(e));
         EXPECT_NEAR(sw.box.size().x() * sw.box.size().y(), straight.box.size().x() * straight.box.size().y(),
@@ -114,6 +118,22 @@ TEST(SwatchData, TurnsAWeaveWhoseThreadsRunAtAnAngle) {
     }
     for (const char* name : {"chainmail", "pebbles", "rivets", "cobbles", "scales"})
         EXPECT_EQ(mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name))).turn, 0.0) << name;
+    // Planar quilting says so, and its threads come out along x and y: stitched across the
+    // placements, the longest run more than a swatch along one axis.
+    mq::PlanarQuiltOptions po;
+    po.width = 16.0;
+    po.height = 16.0;
+    const mq::QuiltResult q = mq::quilt_plane(turned(weave, 30.0), po);
+    EXPECT_TRUE(std::any_of(q.warnings.begin(), q.warnings.end(), [](const std::string& w) {
+        return w.find("threads run at 30 degrees") != std::string::npos;
+    }));
+    double longest = 0.0;
+    for (const Mesh& e : mq::test::split_elements(q.mesh, q.element_of_face)) {
+        const Vec3 d = mq::bounding_box(e).size();
+        longest = std::max({longest, d.x(), d.y()});
+        EXPECT_TRUE(mq::quilt::is_elongated(e));
+    }
+    EXPECT_GT(longest, 11.0);
     // Five bars along the diagonal of a 10 x 10 square, cut to it: threads at 45 degrees, but turned
     // the square's box would grow (to about 14 x 13), so they stay.
     Mesh bars;

@@ -129,6 +129,12 @@ double thread_turn(const Mesh& m, const std::vector<int>& comp, int count) {
 
 }  // namespace
 
+std::string SwatchData::turn_warning() const {
+    if (turn == 0.0) return {};
+    return "the swatch's threads run at " + num(std::round(-turn * 1800.0 / M_PI) / 10.0) +
+           " degrees to its sides: it was turned in its plane so that they run along x and y";
+}
+
 SwatchData prepare_swatch(const Mesh& input) {
     SwatchData s;
     s.mesh = meshquilt::normalize_swatch(input);

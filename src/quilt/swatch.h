@@ -47,6 +47,8 @@ struct SwatchData {
     /// The in-plane turn (radians, about z) applied after normalize_swatch so that the swatch's
     /// threads run along x and y (see kAlignedAgreement); 0 for most swatches.
     double turn = 0.0;
+    /// The warning both stages give for a turned swatch (empty when it was not turned).
+    std::string turn_warning() const;
     static constexpr double kSpanningCover = 0.5;
 };
 
