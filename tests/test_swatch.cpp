@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 // The swatch as the synthesis sees it (quilt/swatch.h): elements, their genus, the gaps between them.
 
+#include "core/intersect.h"
+#include "meshquilt/analysis.h"
 #include "meshquilt/io.h"
 #include "meshquilt/quilt.h"
 #include "quilt/kernel.h"
@@ -147,6 +149,62 @@ TEST(SwatchData, TurnsAWeaveWhoseThreadsRunAtAnAngle) {
     const auto diagonal = mq::quilt::prepare_swatch(bars);
     ASSERT_EQ(diagonal.elements.size(), 5u);
     EXPECT_EQ(diagonal.turn, 0.0);
+}
+
+// A swatch whose elements intersect is quilted thinned: moved inwards along the normals by twice
+// the least that parts them, which thickening undoes.
+TEST(SwatchData, ThinsIntersectingElementsApartAndThickensThemBack) {
+    const Mesh thick = shapes::thickened(mq::read_mesh(swatch_path("chainmail")), 0.08);
+    int n = 0;
+    const std::vector<int> comp = mq::connected_components(thick, &n);
+    const auto pairs = mq::intersecting_element_pairs(thick, comp);
+    ASSERT_GE(pairs.size(), 36u) << "the thickened rings should meet the rings they link with";
+    const auto sw = mq::quilt::prepare_swatch(thick);
+    EXPECT_EQ(sw.intersecting_pairs, static_cast<int>(pairs.size()));
+    // The bundled mail (0.08 thinner) is disjoint, so the least parting thinning is below 0.08.
+    EXPECT_GT(sw.thinned, 0.0);
+    EXPECT_LT(sw.thinned, 0.16);
+    EXPECT_TRUE(sw.elements_disjoint);
+    EXPECT_TRUE(mq::intersecting_element_pairs(sw.mesh, comp, 1).empty());
+    EXPECT_EQ(mq::count_self_intersections(sw.mesh, 1), 0);
+    ASSERT_EQ(sw.elements.size(), 36u);
+    for (int g : sw.element_genus) EXPECT_EQ(g, 1);
+    // The box (footprint and thickness) stays the input's.
+    const mq::Box3 box = mq::bounding_box(thick);
+    EXPECT_LT((sw.box.min - box.min).norm() + (sw.box.max - box.max).norm(), 1e-12);
+    EXPECT_NE(sw.intersect_warning().find("thinned by"), std::string::npos) << sw.intersect_warning();
+    // Thickened back, every vertex returns to where it was (vertex normals of a tube's offset are
+    // nearly its own), and the wire is as thick as before: the volume comes back.
+    Mesh back = sw.mesh;
+    mq::quilt::thicken_elements(&back, comp, std::vector<double>(static_cast<std::size_t>(n), sw.thinned));
+    ASSERT_EQ(back.vertices.size(), thick.vertices.size());
+    double worst = 0.0;
+    for (std::size_t v = 0; v < back.vertices.size(); ++v) worst = std::max(worst, (back.vertices[v] - thick.vertices[v]).norm());
+    EXPECT_LT(worst, 0.05 * sw.thinned);
+    auto volume = [](const Mesh& m) {
+        double v = 0.0;
+        for (const auto& f : m.faces) v += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]])) / 6.0;
+        return v;
+    };
+    EXPECT_LT(volume(sw.mesh), 0.8 * volume(thick));
+    EXPECT_NEAR(volume(back), volume(thick), 0.01 * volume(thick));
+
+    // Disjoint swatches are left as they are.
+    for (const char* name : {"chainmail", "pebbles", "weave"}) {
+        const auto plain = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name)));
+        EXPECT_EQ(plain.intersecting_pairs, 0) << name;
+        EXPECT_EQ(plain.thinned, 0.0) << name;
+        EXPECT_TRUE(plain.intersect_warning().empty()) << name;
+    }
+    // Two slabs overlapping by 0.7 of their width: no thinning within a quarter of their 0.2
+    // thickness parts them, so the swatch stays as it is, and says so.
+    Mesh deep = shapes::concat(shapes::cube(1.0), shapes::translated(shapes::cube(1.0), Vec3(0.3, 0.0, 0.0)));
+    for (Vec3& v : deep.vertices) v.z() *= 0.2;
+    const auto stuck = mq::quilt::prepare_swatch(deep);
+    EXPECT_EQ(stuck.intersecting_pairs, 1);
+    EXPECT_EQ(stuck.thinned, 0.0);
+    EXPECT_FALSE(stuck.elements_disjoint);
+    EXPECT_NE(stuck.intersect_warning().find("cannot be thinned apart"), std::string::npos) << stuck.intersect_warning();
 }
 
 namespace {

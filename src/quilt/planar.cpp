@@ -548,6 +548,11 @@ private:
                         "threads, rings or tiles, covers fully)";
             result.warnings.push_back(text);
         }
+        // A thinned swatch (its elements intersect): the output thickened back, after every measure,
+        // which compares thinned elements with the thinned swatch.
+        if (const std::string w = sw_.intersect_warning(); !w.empty()) result.warnings.push_back(w);
+        if (sw_.thinned > 0.0)
+            quilt::thicken_elements(&result.mesh, result.element_of_face, std::vector<double>(result.source_element.size(), sw_.thinned));
     }
 
     PlanarQuiltOptions opt_;

@@ -269,6 +269,7 @@ public:
             throw InvalidInput("swatch has no thin axis: its smallest extent is more than half the middle one; a swatch must be a slab");
         sw_ = quilt::prepare_swatch(swatch);
         if (const std::string turned = sw_.turn_warning(); !turned.empty()) warnings_.push_back(turned);
+        if (const std::string w = sw_.intersect_warning(); !w.empty()) warnings_.push_back(w);
         for (std::size_t e = 0; e < sw_.elements.size(); ++e) rings_ = rings_ || is_ring_source(static_cast<int>(e));
         interlocked_ = rings_ && swatch_rings_interlock();
         prepare_ring_kinds();
@@ -2902,6 +2903,46 @@ private:
         result.warnings = warnings_;
         if (r.elements_removed > 0)
             result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
+        if (sw_.thinned > 0.0) thicken(result);
+    }
+
+    /// A thinned swatch (SwatchData::thinned: its elements intersect): the output's elements are
+    /// thickened back, after every measure (those compare thinned elements with the thinned
+    /// swatch). Each element by the thinning times its own scale, the square root of its area over
+    /// its swatch element's (both thinned); elements whose vertices no longer follow their swatch
+    /// element's (stitched) take the median scale. `anchors` keep describing the thinned elements.
+    void thicken(SurfaceQuiltResult& result) const {
+        const std::size_t n = result.source_element.size();
+        std::vector<double> area(n, 0.0);
+        std::vector<std::size_t> verts(n, 0);
+        std::vector<char> seen(result.mesh.vertices.size(), 0);
+        for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
+            const auto e = static_cast<std::size_t>(result.element_of_face[f]);
+            area[e] += face_area(result.mesh, f);
+            for (int k = 0; k < 3; ++k) {
+                char& s = seen[static_cast<std::size_t>(result.mesh.faces[f][k])];
+                verts[e] += s == 0;
+                s = 1;
+            }
+        }
+        std::vector<double> scale(n, 0.0), known;
+        for (std::size_t e = 0; e < n; ++e) {
+            const int s = result.source_element[e];
+            if (s < 0) continue;
+            const Mesh& src = sw_.elements[static_cast<std::size_t>(s)];
+            const double a = quilt::mesh_area(src);
+            if (src.vertices.size() != verts[e] || !(a > 0.0)) continue;
+            scale[e] = std::sqrt(area[e] / a);
+            known.push_back(scale[e]);
+        }
+        double median = scale_;
+        if (!known.empty()) {
+            std::nth_element(known.begin(), known.begin() + static_cast<std::ptrdiff_t>(known.size() / 2), known.end());
+            median = known[known.size() / 2];
+        }
+        std::vector<double> offset(n);
+        for (std::size_t e = 0; e < n; ++e) offset[e] = sw_.thinned * (scale[e] > 0.0 ? scale[e] : median);
+        quilt::thicken_elements(&result.mesh, result.element_of_face, offset);
     }
 
     /// Per face: whether its centroid lies within `width` of the base's boundary (shortest paths

@@ -49,6 +49,25 @@ struct SwatchData {
     double turn = 0.0;
     /// The warning both stages give for a turned swatch (empty when it was not turned).
     std::string turn_warning() const;
+    /// Pairs of the input swatch's elements that intersect or touch (linked rings of a wire too
+    /// thick for their spacing, pebbles modelled touching): counted up to kMaxCountedPairs.
+    int intersecting_pairs = 0;
+    /// Beyond the paper: a swatch whose elements intersect is quilted thinned. Every element's
+    /// vertices were moved inwards along their normals by this much (swatch units): the least that
+    /// parts every pair and then enough to put them kThinGap of the median element's xy diagonal
+    /// apart (less where an element would keep under kMinThinVolume of its volume), at most
+    /// kMaxThinning of the smallest element's smallest extent. The box stays the input's. Both
+    /// stages thicken their output back (thicken_elements), so its elements meet where the
+    /// swatch's do. 0: not thinned (the elements are disjoint, or no such thinning parts them: then
+    /// a new element that meets an old one is left out, as for any swatch, and the output is
+    /// sparse).
+    double thinned = 0.0;
+    /// The warning both stages give for a swatch whose elements intersect (empty when they do not).
+    std::string intersect_warning() const;
+    static constexpr int kMaxCountedPairs = 1000;
+    static constexpr double kThinGap = 0.04;
+    static constexpr double kMinThinVolume = 0.4;
+    static constexpr double kMaxThinning = 0.25;
     static constexpr double kSpanningCover = 0.5;
 };
 
@@ -62,6 +81,10 @@ inline constexpr double kLayeredOverlap = 0.05;
 inline constexpr double kLayeredShare = 0.25;
 
 SwatchData prepare_swatch(const Mesh& input);
+
+/// Moves each element of `mesh` outwards (by its own orientation) along its vertex normals by
+/// `offset[element]`: undoes SwatchData::thinned on an output. Elements must not share vertices.
+void thicken_elements(Mesh* mesh, const std::vector<int>& element_of_face, const std::vector<double>& offset);
 
 /// A number for messages: 6 significant digits, no trailing zeros.
 std::string num(double v);

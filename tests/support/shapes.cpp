@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "support/shapes.h"
 
+#include "meshquilt/analysis.h"
+#include "meshquilt/quilt.h"
+#include "quilt/swatch.h"
+
+
 #include <array>
 #include <cmath>
 #include <map>
@@ -226,6 +231,14 @@ Mesh soup(const Mesh& mesh) {
         m.faces.emplace_back(base, base + 1, base + 2);
     }
     return m;
+}
+
+Mesh thickened(const Mesh& swatch, double by) {
+    Mesh m = normalize_swatch(swatch);
+    int n = 0;
+    const std::vector<int> comp = connected_components(m, &n);
+    quilt::thicken_elements(&m, comp, std::vector<double>(static_cast<std::size_t>(n), by));
+    return normalize_swatch(m);
 }
 
 }  // namespace meshquilt::test::shapes

@@ -62,4 +62,9 @@ Mesh flipped(Mesh mesh);
 /// A triangle soup: every face gets its own three vertices (like STL), positions unchanged.
 Mesh soup(const Mesh& mesh);
 
+/// `swatch` in its own frame (normalize_swatch) with every element's surface moved outwards along
+/// its vertex normals by `by` (quilt::thicken_elements): a thicker wire for a chain mail, so that
+/// linked rings intersect (the bundled mail by 0.08: wire radius 0.18 -> about 0.26).
+Mesh thickened(const Mesh& swatch, double by);
+
 }  // namespace meshquilt::test::shapes
