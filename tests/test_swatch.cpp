@@ -189,11 +189,34 @@ TEST(SwatchData, ThinsIntersectingElementsApartAndThickensThemBack) {
     EXPECT_LT(volume(sw.mesh), 0.8 * volume(thick));
     EXPECT_NEAR(volume(back), volume(thick), 0.01 * volume(thick));
 
+    EXPECT_FALSE(sw.tight);
+
+    // A tight mail (the wire 0.04 thicker: rings 0.05 apart, the bundled mail's 0.15) is thinned to
+    // kThinGap of a ring's xy diagonal: grown by less than half of that, the thinned rings still
+    // miss each other; grown by a little more, they meet.
+    const Mesh tight_mail = shapes::thickened(mq::read_mesh(swatch_path("chainmail")), 0.04);
+    ASSERT_TRUE(mq::intersecting_element_pairs(tight_mail, comp, 1).empty());
+    const auto tight = mq::quilt::prepare_swatch(tight_mail);
+    EXPECT_TRUE(tight.tight);
+    EXPECT_EQ(tight.intersecting_pairs, 0);
+    EXPECT_GT(tight.thinned, 0.0);
+    EXPECT_LT(tight.thinned, 0.04);
+    EXPECT_NE(tight.intersect_warning().find("rings stand closer than"), std::string::npos) << tight.intersect_warning();
+    const mq::Box3 rb = mq::bounding_box(tight.elements[0]);
+    const double half_gap = 0.5 * mq::quilt::SwatchData::kThinGap * std::hypot(rb.size().x(), rb.size().y());
+    Mesh grown = tight.mesh;
+    mq::quilt::thicken_elements(&grown, comp, std::vector<double>(static_cast<std::size_t>(n), 0.9 * half_gap));
+    EXPECT_TRUE(mq::intersecting_element_pairs(grown, comp, 1).empty());
+    grown = tight.mesh;
+    mq::quilt::thicken_elements(&grown, comp, std::vector<double>(static_cast<std::size_t>(n), 1.2 * half_gap));
+    EXPECT_FALSE(mq::intersecting_element_pairs(grown, comp, 1).empty());
+
     // Disjoint swatches are left as they are.
     for (const char* name : {"chainmail", "pebbles", "weave"}) {
         const auto plain = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name)));
         EXPECT_EQ(plain.intersecting_pairs, 0) << name;
         EXPECT_EQ(plain.thinned, 0.0) << name;
+        EXPECT_FALSE(plain.tight) << name;
         EXPECT_TRUE(plain.intersect_warning().empty()) << name;
     }
     // Two slabs overlapping by 0.7 of their width: no thinning within a quarter of their 0.2

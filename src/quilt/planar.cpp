@@ -548,11 +548,15 @@ private:
                         "threads, rings or tiles, covers fully)";
             result.warnings.push_back(text);
         }
-        // A thinned swatch (its elements intersect): the output thickened back, after every measure,
-        // which compares thinned elements with the thinned swatch.
+        // A thinned swatch (its elements intersect, or its rings are tight): the output thickened
+        // back, after every measure, which compares thinned elements with the thinned swatch.
         if (const std::string w = sw_.intersect_warning(); !w.empty()) result.warnings.push_back(w);
-        if (sw_.thinned > 0.0)
-            quilt::thicken_elements(&result.mesh, result.element_of_face, std::vector<double>(result.source_element.size(), sw_.thinned));
+        const auto t_thick = Clock::now();
+        const std::vector<double> offset(result.source_element.size(), sw_.thinned);
+        if (const int less = quilt::thicken_output(sw_, &result.mesh, result.element_of_face, offset); less > 0)
+            result.warnings.push_back(std::to_string(less) + " of " + std::to_string(offset.size()) +
+                                      " elements were thickened back less, since in full they would meet a neighbour the swatch's elements do not meet");
+        if (sw_.thinned > 0.0) result.report.seconds.emplace_back("thicken back", seconds_since(t_thick));
     }
 
     PlanarQuiltOptions opt_;

@@ -2906,12 +2906,14 @@ private:
         if (sw_.thinned > 0.0) thicken(result);
     }
 
-    /// A thinned swatch (SwatchData::thinned: its elements intersect): the output's elements are
-    /// thickened back, after every measure (those compare thinned elements with the thinned
-    /// swatch). Each element by the thinning times its own scale, the square root of its area over
-    /// its swatch element's (both thinned); elements whose vertices no longer follow their swatch
-    /// element's (stitched) take the median scale. `anchors` keep describing the thinned elements.
+    /// A thinned swatch (SwatchData::thinned: its elements intersect, or its rings are tight): the
+    /// output's elements are thickened back (quilt::thicken_output), after every measure (those
+    /// compare thinned elements with the thinned swatch). Each element by the thinning times its
+    /// own scale, the square root of its area over its swatch element's (both thinned); elements
+    /// whose vertices no longer follow their swatch element's (stitched) take the median scale.
+    /// `anchors` keep describing the thinned elements.
     void thicken(SurfaceQuiltResult& result) const {
+        const auto t0 = Clock::now();
         const std::size_t n = result.source_element.size();
         std::vector<double> area(n, 0.0);
         std::vector<std::size_t> verts(n, 0);
@@ -2942,7 +2944,10 @@ private:
         }
         std::vector<double> offset(n);
         for (std::size_t e = 0; e < n; ++e) offset[e] = sw_.thinned * (scale[e] > 0.0 ? scale[e] : median);
-        quilt::thicken_elements(&result.mesh, result.element_of_face, offset);
+        if (const int less = quilt::thicken_output(sw_, &result.mesh, result.element_of_face, offset); less > 0)
+            result.warnings.push_back(std::to_string(less) + " of " + std::to_string(n) +
+                                      " elements were thickened back less, since in full they would meet a neighbour the swatch's elements do not meet");
+        result.report.seconds.emplace_back("thicken back", seconds_since(t0));
     }
 
     /// Per face: whether its centroid lies within `width` of the base's boundary (shortest paths

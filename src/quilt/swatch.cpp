@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
+#include <set>
 
 namespace meshquilt::quilt {
 
@@ -148,6 +150,56 @@ Mesh offset_along_normals(const Mesh& m, const std::vector<Vec3>& normal, const 
     return out;
 }
 
+/// Offsets of a swatch's closed elements along their outward vertex normals, and what thinning
+/// (SwatchData::thinned) must check of them.
+struct NormalOffsets {
+    const Mesh& m;
+    const std::vector<int>& comp;
+    int count;
+    std::vector<int> vcomp;
+    std::vector<double> sign;
+    std::vector<Vec3> normal;
+    std::vector<Box3> box;
+    double cap = 0.0;       ///< kMaxThinning of the smallest element's smallest extent
+    double diagonal = 0.0;  ///< the median element's xy diagonal
+
+    NormalOffsets(const Mesh& mesh, const std::vector<int>& c, int n) : m(mesh), comp(c), count(n), normal(vertex_normals(mesh)), box(static_cast<std::size_t>(n)) {
+        element_orientation(m, comp, count, &vcomp, &sign);
+        for (std::size_t v = 0; v < m.vertices.size(); ++v) box[static_cast<std::size_t>(vcomp[v])].extend(m.vertices[v]);
+        double extent = std::numeric_limits<double>::infinity();
+        std::vector<double> diag;
+        for (const Box3& b : box) {
+            extent = std::min(extent, b.size().minCoeff());
+            diag.push_back(std::hypot(b.size().x(), b.size().y()));
+        }
+        cap = SwatchData::kMaxThinning * extent;
+        std::nth_element(diag.begin(), diag.begin() + static_cast<std::ptrdiff_t>(diag.size() / 2), diag.end());
+        diagonal = diag[diag.size() / 2];
+    }
+    /// The swatch with every element grown by `d` (d < 0: thinned).
+    Mesh at(double d) const { return offset_along_normals(m, normal, vcomp, sign, d); }
+    bool apart(double d) const { return intersecting_element_pairs(at(d), comp, 1).empty(); }
+    std::vector<double> volumes(const Mesh& mesh) const {
+        std::vector<double> vol(static_cast<std::size_t>(count), 0.0);
+        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+            const Tri& t = mesh.faces[f];
+            vol[static_cast<std::size_t>(comp[f])] += sign[static_cast<std::size_t>(comp[f])] * mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+        }
+        return vol;
+    }
+    /// Thinned by `d` (> 0): every element keeps kMinThinVolume of its volume and none intersects
+    /// itself or another; the thinned swatch, or nothing.
+    std::optional<Mesh> thinned(double d) const {
+        if (!(d > 0.0) || d > cap) return std::nullopt;
+        Mesh thin = at(-d);
+        const std::vector<double> before = volumes(m), after = volumes(thin);
+        for (std::size_t c = 0; c < after.size(); ++c)
+            if (!(after[c] >= SwatchData::kMinThinVolume * before[c])) return std::nullopt;
+        if (!intersecting_element_pairs(thin, comp, 1).empty() || count_self_intersections(thin, 1) > 0) return std::nullopt;
+        return thin;
+    }
+};
+
 /// Beyond the paper: the thinning of SwatchData::thinned for a swatch `m` of closed elements
 /// (components `comp`) some of which intersect. The least inward offset that parts every pair is
 /// found by bisection (12 steps) up to kMaxThinning of the smallest element's smallest extent;
@@ -159,52 +211,58 @@ Mesh offset_along_normals(const Mesh& m, const std::vector<Vec3>& normal, const 
 /// keeps its centre line: the lattice is the swatch's.
 double thin_apart(Mesh* m, const std::vector<int>& comp, int count) {
     if (count < 2 || !quilt::is_closed_oriented(*m)) return 0.0;
-    std::vector<int> vcomp;
-    std::vector<double> sign;
-    element_orientation(*m, comp, count, &vcomp, &sign);
-    const std::vector<Vec3> normal = vertex_normals(*m);
-    std::vector<Box3> box(static_cast<std::size_t>(count));
-    for (std::size_t v = 0; v < m->vertices.size(); ++v) box[static_cast<std::size_t>(vcomp[v])].extend(m->vertices[v]);
-    double extent = std::numeric_limits<double>::infinity();
-    for (const Box3& b : box) extent = std::min(extent, b.size().minCoeff());
-    const double cap = SwatchData::kMaxThinning * extent;
-    if (!(cap > 0.0)) return 0.0;
-    auto apart = [&](double d) { return intersecting_element_pairs(offset_along_normals(*m, normal, vcomp, sign, -d), comp, 1).empty(); };
-    if (!apart(cap)) return 0.0;
-    double lo = 0.0, hi = cap;
+    const NormalOffsets off(*m, comp, count);
+    if (!(off.cap > 0.0) || !off.apart(-off.cap)) return 0.0;
+    double lo = 0.0, hi = off.cap;
     for (int it = 0; it < 12; ++it) {
         const double mid = 0.5 * (lo + hi);
-        (apart(mid) ? hi : lo) = mid;
+        (off.apart(-mid) ? hi : lo) = mid;
     }
     // The thinning taken: the least that parts them plus half of kThinGap times the median
     // element's xy diagonal (so the thinned elements are that far apart), or if that is too much,
-    // half as much more, a tenth more, or none more: the first under which every element keeps
-    // kMinThinVolume of its volume and none intersects itself or another.
-    auto volumes = [&](const Mesh& mesh) {
-        std::vector<double> vol(static_cast<std::size_t>(count), 0.0);
-        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-            const Tri& t = mesh.faces[f];
-            vol[static_cast<std::size_t>(comp[f])] += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+    // half as much more, a tenth more, or none more: the first that `thinned` accepts.
+    const double more = 0.5 * SwatchData::kThinGap * off.diagonal;
+    for (double share : {1.0, 0.5, 0.1, 0.0})
+        if (std::optional<Mesh> thin = off.thinned(std::min(off.cap, hi + share * more))) {
+            *m = std::move(*thin);
+            return std::min(off.cap, hi + share * more);
         }
-        return vol;
-    };
-    const std::vector<double> before = volumes(*m);
-    std::vector<double> diagonal;
-    for (const Box3& b : box) diagonal.push_back(std::hypot(b.size().x(), b.size().y()));
-    std::nth_element(diagonal.begin(), diagonal.begin() + static_cast<std::ptrdiff_t>(diagonal.size() / 2), diagonal.end());
-    const double more = 0.5 * SwatchData::kThinGap * diagonal[diagonal.size() / 2];
-    for (double share : {1.0, 0.5, 0.1, 0.0}) {
-        const double d = std::min(cap, hi + share * more);
-        if (share > 0.0 && !apart(d)) continue;
-        Mesh thin = offset_along_normals(*m, normal, vcomp, sign, -d);
-        const std::vector<double> after = volumes(thin);
-        bool kept = true;
-        for (std::size_t c = 0; c < after.size(); ++c) kept = kept && after[c] * sign[c] >= SwatchData::kMinThinVolume * before[c] * sign[c];
-        if (!kept || count_self_intersections(thin, 1) > 0) continue;
-        *m = std::move(thin);
-        return d;
-    }
     return 0.0;
+}
+
+/// Beyond the paper: a chain mail whose rings do not intersect but stand closer than kThinGap of
+/// a ring's xy diagonal (a tight mail: a thick wire, a steep tilt) is thinned to that clearance
+/// too: its rings collide on a surface as soon as a patch moves them a little, as an
+/// intersecting mail's thinned to a bare miss did. Only for a swatch of rings (closed, genus >= 1,
+/// not threads): pavings and pebbles keep narrow joints on purpose. The least outward offset at
+/// which two rings touch is found by bisection; the thinning is what is missing of half the
+/// clearance. 0 when the rings are far enough apart already or `thinned` refuses.
+double thin_tight_rings(Mesh* m, const std::vector<int>& comp, int count) {
+    if (count < 2 || !quilt::is_closed_oriented(*m)) return 0.0;
+    std::vector<int> faces(static_cast<std::size_t>(count), 0);
+    std::vector<std::set<int>> verts(static_cast<std::size_t>(count));
+    for (std::size_t f = 0; f < m->faces.size(); ++f) {
+        ++faces[static_cast<std::size_t>(comp[f])];
+        for (int k = 0; k < 3; ++k) verts[static_cast<std::size_t>(comp[f])].insert(m->faces[f][k]);
+    }
+    const NormalOffsets off(*m, comp, count);
+    for (int c = 0; c < count; ++c) {
+        const Vec3 d = off.box[static_cast<std::size_t>(c)].size();
+        const bool thread = std::max(d.x(), d.y()) > 3.0 * std::min(d.x(), d.y());
+        if (2 * verts[static_cast<std::size_t>(c)].size() > static_cast<std::size_t>(faces[static_cast<std::size_t>(c)]) || thread) return 0.0;
+    }
+    const double half = 0.5 * SwatchData::kThinGap * off.diagonal;
+    if (off.apart(half)) return 0.0;
+    double lo = 0.0, hi = half;  // apart when grown by lo, touching when grown by hi
+    for (int it = 0; it < 12; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (off.apart(mid) ? lo : hi) = mid;
+    }
+    const double d = half - lo;
+    std::optional<Mesh> thin = off.thinned(d);
+    if (!thin) return 0.0;
+    *m = std::move(*thin);
+    return d;
 }
 
 }  // namespace
@@ -222,7 +280,38 @@ void thicken_elements(Mesh* mesh, const std::vector<int>& element_of_face, const
     }
 }
 
+int thicken_output(const SwatchData& sw, Mesh* mesh, const std::vector<int>& element_of_face, std::vector<double> offset) {
+    if (!(sw.thinned > 0.0)) return 0;
+    if (!sw.tight) {
+        thicken_elements(mesh, element_of_face, offset);
+        return 0;
+    }
+    const Mesh thin = *mesh;  // disjoint: the stage removed what intersected
+    const std::vector<double> full = offset;
+    constexpr int kSteps = 4;  // an element of a pair that meets loses a quarter of its thickening per round
+    std::vector<int> less(offset.size(), 0);
+    for (int round = 0;; ++round) {
+        thicken_elements(mesh, element_of_face, offset);
+        const auto pairs = intersecting_element_pairs(*mesh, element_of_face);
+        if (pairs.empty()) break;
+        *mesh = thin;
+        if (round == 3 * kSteps) {  // not settled (never seen): every element as thin as it was quilted
+            std::fill(less.begin(), less.end(), 1);
+            break;
+        }
+        std::vector<char> shrink(offset.size(), 0);
+        for (const auto& [a, b] : pairs) shrink[static_cast<std::size_t>(a)] = shrink[static_cast<std::size_t>(b)] = 1;
+        for (std::size_t e = 0; e < offset.size(); ++e)
+            if (shrink[e] && less[e] < kSteps) offset[e] = full[e] * (kSteps - ++less[e]) / kSteps;
+    }
+    return static_cast<int>(std::count_if(less.begin(), less.end(), [](int l) { return l > 0; }));
+}
+
 std::string SwatchData::intersect_warning() const {
+    if (tight)
+        return "the swatch's rings stand closer than " + num(kThinGap) +
+               " of their width to one another: they were quilted thinned by " + num(thinned) +
+               " swatch units along their normals, so that they keep clear of one another on a curved base, and thickened back";
     if (intersecting_pairs == 0) return {};
     const std::string pairs = (intersecting_pairs >= kMaxCountedPairs ? "at least " : "") + std::to_string(intersecting_pairs) +
                               (intersecting_pairs == 1 ? " pair" : " pairs");
@@ -255,7 +344,12 @@ SwatchData prepare_swatch(const Mesh& input) {
     s.box = bounding_box(s.mesh);
     if (count >= 2) {
         s.intersecting_pairs = static_cast<int>(intersecting_element_pairs(s.mesh, comp, SwatchData::kMaxCountedPairs).size());
-        if (s.intersecting_pairs > 0) s.thinned = thin_apart(&s.mesh, comp, count);
+        if (s.intersecting_pairs > 0) {
+            s.thinned = thin_apart(&s.mesh, comp, count);
+        } else {
+            s.thinned = thin_tight_rings(&s.mesh, comp, count);
+            s.tight = s.thinned > 0.0;
+        }
     }
     std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(count));
     for (std::size_t f = 0; f < comp.size(); ++f) faces_of[static_cast<std::size_t>(comp[f])].push_back(static_cast<int>(f));

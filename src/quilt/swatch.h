@@ -62,7 +62,12 @@ struct SwatchData {
     /// a new element that meets an old one is left out, as for any swatch, and the output is
     /// sparse).
     double thinned = 0.0;
-    /// The warning both stages give for a swatch whose elements intersect (empty when they do not).
+    /// Thinned although no two elements intersect: a chain mail whose rings stand closer than
+    /// kThinGap (thin_tight_rings in swatch.cpp). Its output must stay disjoint, so an output ring
+    /// that would meet another once thickened back is thickened less (thicken_output).
+    bool tight = false;
+    /// The warning both stages give for a swatch whose elements intersect or that is tight (empty
+    /// when neither).
     std::string intersect_warning() const;
     static constexpr int kMaxCountedPairs = 1000;
     static constexpr double kThinGap = 0.04;
@@ -85,6 +90,13 @@ SwatchData prepare_swatch(const Mesh& input);
 /// Moves each element of `mesh` outwards (by its own orientation) along its vertex normals by
 /// `offset[element]`: undoes SwatchData::thinned on an output. Elements must not share vertices.
 void thicken_elements(Mesh* mesh, const std::vector<int>& element_of_face, const std::vector<double>& offset);
+
+/// A thinned swatch's output (`offset[e]`: the thinning at element e's scale) thickened back in
+/// full, except for a tight swatch (SwatchData::tight), whose output must stay disjoint as the
+/// swatch is: there the elements of every pair that meets once thickened lose a quarter of their
+/// thickening, round by round, until none meet (at worst they stay as thin as they were quilted).
+/// Returns how many elements were thickened less than `offset`.
+int thicken_output(const SwatchData& sw, Mesh* mesh, const std::vector<int>& element_of_face, std::vector<double> offset);
 
 /// A number for messages: 6 significant digits, no trailing zeros.
 std::string num(double v);
