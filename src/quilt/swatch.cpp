@@ -374,7 +374,8 @@ SwatchData prepare_swatch(const Mesh& input) {
         s.element_genus.push_back(s.element_closed.back() ? std::max(0, (2 - (static_cast<int>(e.vertices.size()) - static_cast<int>(e.faces.size()) / 2)) / 2) : 0);
         s.elements.push_back(std::move(e));
     }
-    s.elements_disjoint = intersecting_element_pairs(s.mesh, comp, 1).empty();
+    // Disjoint as given, or thinned apart (NormalOffsets::thinned checked that).
+    s.elements_disjoint = s.intersecting_pairs == 0 || s.thinned > 0.0;
     const double swatch_xy = std::max(s.box.size().x() * s.box.size().y(), 1e-300);
     for (const Mesh& e : s.elements) {
         const Box3 b = bounding_box(e);

@@ -57,7 +57,7 @@ struct SwatchData {
     /// parts every pair and then enough to put them kThinGap of the median element's xy diagonal
     /// apart (less where an element would keep under kMinThinVolume of its volume), at most
     /// kMaxThinning of the smallest element's smallest extent. The box stays the input's. Both
-    /// stages thicken their output back (thicken_elements), so its elements meet where the
+    /// stages thicken their output back (thicken_output), so its elements meet where the
     /// swatch's do. 0: not thinned (the elements are disjoint, or no such thinning parts them: then
     /// a new element that meets an old one is left out, as for any swatch, and the output is
     /// sparse).

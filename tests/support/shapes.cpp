@@ -5,7 +5,6 @@
 #include "meshquilt/quilt.h"
 #include "quilt/swatch.h"
 
-
 #include <array>
 #include <cmath>
 #include <map>
