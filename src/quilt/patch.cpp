@@ -101,8 +101,8 @@ std::pair<double, double> thinness(const SM& sm, SM::Face_index f) {
     return {denom > 0.0 ? twice_area / denom : 0.0, e[2]};
 }
 
-/// Remeshes the thin faces (see refine_long_edges) with one ring of faces around them; returns the
-/// number of input faces in the remeshed region.
+/// Remeshes the thin and the large faces (see refine_long_edges) with one ring of faces around them;
+/// returns the number of input faces in the remeshed region.
 int remesh_thin_faces(SM& sm, double max_length) {
     const double min_sine = std::sin(kMinCellAngleDegrees * M_PI / 180.0);
     auto in_region = sm.add_property_map<SM::Face_index, char>("f:thin_region", 0).first;
@@ -119,11 +119,15 @@ int remesh_thin_faces(SM& sm, double max_length) {
             thin_area += area;
         }
     }
+    // Large faces (a cube's, a low-poly model's) are remeshed whatever their shape: split_long_edges
+    // only splits edges, so a face many cells across would become a fan of slivers that reach across it.
+    std::vector<SM::Face_index> thin;
+    for (SM::Face_index f : sm.faces())
+        if (!is_thin[f] && thinness(sm, f).second > kLargeFaceCells * max_length) thin.push_back(f);
     // Clusters of thin faces (sharing edges) smaller than kThinClusterFootprints of a footprint (six
     // cells across) lie within one patch among well-shaped faces, and are left as they are, unless
     // thin faces cover kThinBaseShare of the base or more.
     const bool all_clusters = thin_area >= kThinBaseShare * total_area;
-    std::vector<SM::Face_index> thin;
     if (any) {
         auto seen = sm.add_property_map<SM::Face_index, char>("f:seen", 0).first;
         const double footprint = 36.0 * max_length * max_length;
@@ -166,7 +170,8 @@ int remesh_thin_faces(SM& sm, double max_length) {
     double area = 0.0;
     for (SM::Face_index f : region) area += PMP::face_area(f, sm);
     const double equilateral = std::sqrt(4.0 * area / (std::sqrt(3.0) * static_cast<double>(region.size())));
-    const double target = std::min(kThinFaceTarget * max_length, equilateral);
+    // Large faces alone are remeshed at the cell edge (split_long_edges then halves what is longer).
+    const double target = std::min((thin_area > 0.0 ? kThinFaceTarget : kLargeFaceTarget) * max_length, equilateral);
     // Sharp edges (and the mesh's boundary, by default) keep their polylines: split, never collapsed
     // or flipped; their corners stay.
     auto sharp = sm.add_property_map<SM::Edge_index, bool>("e:sharp", false).first;

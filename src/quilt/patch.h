@@ -35,13 +35,23 @@ inline constexpr double kThinClusterFootprints = 0.5;
 /// region 0.585; every cluster remeshed, 6.7% and 0.74). The shared meshes' thin faces cover at
 /// most 2% (the eight), and stay as they were.
 inline constexpr double kThinBaseShare = 0.05;
+/// Faces whose longest edge is longer than this many cell edges (a footprint) are remeshed too,
+/// whatever their shape: splitting their edges alone would leave fans of slivers across them (a
+/// 12-face cube with rivets: its faces' middles held 0.1-0.2 of the rivets of their corners, lowest
+/// region 0.349). Smaller ones stay: at 2 cells the eight's few long faces at scale 0.2 (up to 4.5
+/// cells) were remeshed too and its chain mail lost 62 of 1,060 rings.
+inline constexpr double kLargeFaceCells = 6.0;
+/// ... at this edge (a share of the cell edge) when the base has no thin faces: as fine as the
+/// cells elsewhere (the cube at scale 0.15: 13,716 cells, 39 s; at kThinFaceTarget 18,384, slower).
+inline constexpr double kLargeFaceTarget = 1.0;
 /// The remeshed regions' edge, at most (as a share of the cell edge).
 inline constexpr double kThinFaceTarget = 0.75;
 /// Dihedral angle (degrees) beyond which an edge is sharp and is kept by the remeshing of thin faces.
 inline constexpr double kSharpEdgeDegrees = 45.0;
 
 /// The cells of surface quilting. Clusters of thin faces (kMinCellAngleDegrees, kThinFaceMinLength,
-/// kThinClusterFootprints) and one ring of faces around them are remeshed first
+/// kThinClusterFootprints), large faces (kLargeFaceCells) and one ring of faces around them are
+/// remeshed first
 /// (CGAL::Polygon_mesh_processing::isotropic_remeshing at the region's equilateral edge, at most
 /// kThinFaceTarget of `max_length`; vertices stay on the input surface, sharp edges, corners and the
 /// boundary keep their polylines): a sliver's centroid says little about where it is, and a fan of
