@@ -658,6 +658,37 @@ TEST(Cells, ABaseRiddledWithSliversIsRemeshedWhateverItsClusters) {
     EXPECT_NEAR(enclosed_volume(cells), 8.0, 1e-9);
 }
 
+// A face a footprint or more across (kLargeFaceCells) is remeshed: its split edges alone would
+// leave a fan of slivers reaching across it, with no vertex inside (a 12-face cube's middles went
+// bare). Its surface and its sharp edges and corners stay where they were.
+TEST(Cells, FacesAFootprintAcrossAreRemeshedNotSplitIntoFans) {
+    const Mesh cube = shapes::cube(2.0, Vec3(-1.0, -1.0, -1.0));  // faces 2 to 2.83 long
+    const double cell = 0.1;                                        // 20 cells and more
+    std::vector<int> parent;
+    int thin = -1;
+    const Mesh cells = mq::quilt::refine_long_edges(cube, cell, &parent, &thin);
+    EXPECT_EQ(thin, 12);
+    EXPECT_TRUE(mq::test::is_closed_manifold(cells));
+    std::printf("large-faced cube: %zu cells, smallest angle %.1f, %.2f%% of the angles under 10 degrees\n", cells.faces.size(),
+                smallest_angle_degrees(cells), 100.0 * share_of_angles_below(cells, 10.0));
+    // Split only, the faces' middles hold no vertex and its angles fall far below 10 degrees.
+    EXPECT_GT(smallest_angle_degrees(cells), 10.0);
+    for (const Vec3& v : cells.vertices) EXPECT_NEAR(v.cwiseAbs().maxCoeff(), 1.0, 1e-12);
+    EXPECT_NEAR(enclosed_volume(cells), 8.0, 1e-9);
+    for (const Vec3& v : cube.vertices) EXPECT_TRUE(has_vertex_at(cells, v));
+    int inside = 0;  // vertices in the middle ninth of some face
+    for (const Vec3& v : cells.vertices) {
+        const Vec3 a = v.cwiseAbs();
+        int mid = 0;
+        for (int k = 0; k < 3; ++k) mid += a[k] < 1.0 / 3.0 ? 1 : 0;
+        inside += mid == 2 ? 1 : 0;
+    }
+    EXPECT_GT(inside, 6 * 20);
+    // A face under a footprint across is only split, as before (Cells.AWellShapedBaseIsOnlySplit).
+    (void)mq::quilt::refine_long_edges(cube, 2.9 / mq::quilt::kLargeFaceCells, &parent, &thin);
+    EXPECT_EQ(thin, 0);
+}
+
 TEST(Cells, AWellShapedBaseIsOnlySplit) {
     // No thin face: nothing is remeshed, and every input vertex stays where it was.
     const Mesh sphere = isect::icosphere(1.0, 3);

@@ -39,7 +39,7 @@ inline constexpr double kThinBaseShare = 0.05;
 /// whatever their shape: splitting their edges alone would leave fans of slivers across them (a
 /// 12-face cube with rivets: its faces' middles held 0.1-0.2 of the rivets of their corners, lowest
 /// region 0.349). Smaller ones stay: at 2 cells the eight's few long faces at scale 0.2 (up to 4.5
-/// cells) were remeshed too and its chain mail lost 62 of 1,060 rings.
+/// cells) were remeshed too and its chain mail fell to 998 rings, below its test's 1,020.
 inline constexpr double kLargeFaceCells = 6.0;
 /// ... at this edge (a share of the cell edge) when the base has no thin faces: as fine as the
 /// cells elsewhere (the cube at scale 0.15: 13,716 cells, 39 s; at kThinFaceTarget 18,384, slower).
