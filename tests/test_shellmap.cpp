@@ -689,6 +689,34 @@ TEST(Cells, FacesAFootprintAcrossAreRemeshedNotSplitIntoFans) {
     EXPECT_EQ(thin, 0);
 }
 
+// A CSG plate with a hole (tests/data/surface/holed_plate.obj: manifold3d's difference and refine,
+// so the hole's 48-sided rims are split into collinear pieces among slivers) is remeshed; the
+// remesher's flips along the rims leave caps, faces on a rim's line or across one of its corners
+// from the hole's side, whose normals fold the base (six vertices without a direction seeing their
+// faces, then smoothed, and an inverted shell prism, on a plate with three holes) unless they are
+// flipped back (quilt::kCapAngleDegrees).
+TEST(Cells, NoCapsOrFoldsAlongAHolesRimAfterRemeshing) {
+    const Mesh plate = mq::read_mesh(surface_data_path("holed_plate.obj"));
+    ASSERT_TRUE(mq::test::is_closed_manifold(plate));
+    std::vector<int> parent;
+    int thin = -1;
+    // At cells of 0.7 the remesher left 18 such vertices on this plate, faces of 180 degrees among them.
+    Mesh cells = mq::quilt::refine_long_edges(plate, 0.7, &parent, &thin);
+    EXPECT_GT(thin, static_cast<int>(plate.faces.size()) / 2);
+    EXPECT_TRUE(mq::test::is_closed_manifold(cells));
+    double largest = 0.0;
+    for (const mq::Tri& t : cells.faces)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = cells.vertices[t[(k + 1) % 3]] - cells.vertices[t[k]], b = cells.vertices[t[(k + 2) % 3]] - cells.vertices[t[k]];
+            largest = std::max(largest, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+        }
+    std::printf("holed plate: %zu cells, angles %.1f to %.1f degrees\n", cells.faces.size(), smallest_angle_degrees(cells), largest);
+    EXPECT_LT(largest, mq::quilt::kCapAngleDegrees);
+    EXPECT_EQ(mq::shell::smooth_folds(cells, mq::shell::kMinSeeingCos), 0);
+    // The same solid: the flips move the surface by at most a cap's height.
+    EXPECT_NEAR(enclosed_volume(cells), enclosed_volume(plate), 1e-3 * enclosed_volume(plate));
+}
+
 TEST(Cells, AWellShapedBaseIsOnlySplit) {
     // No thin face: nothing is remeshed, and every input vertex stays where it was.
     const Mesh sphere = isect::icosphere(1.0, 3);

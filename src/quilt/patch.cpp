@@ -8,12 +8,14 @@
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <unordered_map>
 #include <unordered_set>
@@ -99,6 +101,47 @@ std::pair<double, double> thinness(const SM& sm, SM::Face_index f) {
     const double twice_area = std::sqrt(CGAL::cross_product(p[1] - p[0], p[2] - p[0]).squared_length());
     const double denom = e[1] * e[2];
     return {denom > 0.0 ? twice_area / denom : 0.0, e[2]};
+}
+
+/// Flips the edge opposite the flat angle of each cap (a face with an angle over kCapAngleDegrees,
+/// its corners nearly on one line) when the two new faces turn less than 60 degrees from the face
+/// that was across the edge and neither is a cap; an edge on the border or `sharp`, or whose new
+/// edge exists already, is never flipped. The remesher's flips leave caps along constrained
+/// polylines whose vertices lie nearly on one line (a hole's rim of 48 sides split into collinear
+/// pieces): a face on the line, its normal noise, and a face bridging a corner of the rim from the
+/// hole's side, both folds of the base and inverted prisms of the shell. The surface moves by at
+/// most a cap's height. (CGAL 5.5's experimental remove_almost_degenerate_faces left two of six
+/// such caps on a refined plate with three holes, as "not the best diagonal".)
+template <class SharpMap>
+void flip_caps(SM& sm, const SharpMap& sharp) {
+    const double max_cos = std::cos(kCapAngleDegrees * M_PI / 180.0);
+    auto cap_edge = [&](SM::Face_index f) { return PMP::is_cap_triangle_face(f, sm, max_cos); };
+    auto normal = [&](SM::Face_index f) {
+        const SM::Halfedge_index h = sm.halfedge(f);
+        const K::Point_3 &p = sm.point(sm.source(h)), &q = sm.point(sm.target(h)), &r = sm.point(sm.target(sm.next(h)));
+        const K::Vector_3 n = CGAL::cross_product(q - p, r - p);
+        const double l = std::sqrt(n.squared_length());
+        return l > 0.0 ? n / l : n;
+    };
+    for (int round = 0; round < 4; ++round) {
+        bool flipped = false;
+        for (SM::Face_index f : sm.faces()) {
+            const SM::Halfedge_index h = cap_edge(f);
+            if (h == SM::null_halfedge() || sharp[sm.edge(h)] || sm.is_border(sm.edge(h))) continue;
+            const SM::Face_index g = sm.face(sm.opposite(h));
+            if (cap_edge(g) != SM::null_halfedge()) continue;
+            if (CGAL::halfedge(sm.target(sm.next(h)), sm.target(sm.next(sm.opposite(h))), sm).second) continue;
+            const K::Vector_3 across = normal(g);
+            CGAL::Euler::flip_edge(h, sm);
+            const SM::Face_index a = sm.face(h), b = sm.face(sm.opposite(h));
+            if (cap_edge(a) == SM::null_halfedge() && cap_edge(b) == SM::null_halfedge() && normal(a) * across > 0.5 && normal(b) * across > 0.5) {
+                flipped = true;
+                continue;
+            }
+            CGAL::Euler::flip_edge(h, sm);  // back as it was
+        }
+        if (!flipped) break;
+    }
 }
 
 /// Remeshes the thin and the large faces (see refine_long_edges) with one ring of faces around them;
@@ -188,6 +231,7 @@ int remesh_thin_faces(SM& sm, double max_length) {
                                      .edge_is_constrained_map(sharp)
                                      .vertex_is_constrained_map(corner)
                                      .collapse_constraints(false));
+    if (target > 0.0) flip_caps(sm, sharp);
     const auto n = static_cast<int>(region.size());
     sm.remove_property_map(in_region);
     sm.remove_property_map(sharp);

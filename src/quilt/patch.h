@@ -46,6 +46,10 @@ inline constexpr double kLargeFaceCells = 6.0;
 inline constexpr double kLargeFaceTarget = 1.0;
 /// The remeshed regions' edge, at most (as a share of the cell edge).
 inline constexpr double kThinFaceTarget = 0.75;
+/// Faces with an angle over this (degrees) after the remeshing are caps: the edge opposite that
+/// angle is flipped where that keeps the surface (a hole's rim of 48 sides turns by 7.5 degrees at
+/// each corner, and a face across a corner has an angle of 172.5).
+inline constexpr double kCapAngleDegrees = 170.0;
 /// Dihedral angle (degrees) beyond which an edge is sharp and is kept by the remeshing of thin faces.
 inline constexpr double kSharpEdgeDegrees = 45.0;
 
