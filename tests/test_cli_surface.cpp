@@ -60,6 +60,7 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
+    EXPECT_EQ(j.at("surface").at("region_density_min_at").size(), 3u);  // a point of the base (SurfaceErrors.ASwatchTooLarge...)
     // The scale given is the scale used, and the output file's header records it.
     EXPECT_DOUBLE_EQ(j.at("surface").at("scale").get<double>(), 0.3);
     EXPECT_NE(sa.find("--scale 0.3 --seed 3"), std::string::npos);

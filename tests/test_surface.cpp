@@ -910,8 +910,15 @@ TEST(SurfaceErrors, ASwatchTooLargeForTheBaseIsAnErrorOrAWarning) {
     EXPECT_GT(r.report.elements, 0);
     ASSERT_GT(r.surface.regions, 0);
     EXPECT_LT(r.surface.region_density_min, 0.5);  // measured: 0.29 (16 rings)
+    // The warning and the report name a point of the thinnest region: on the base's surface.
+    const Vec3 at = r.surface.region_density_min_at;
+    EXPECT_TRUE(at.x() >= -1e-9 && at.y() >= -1e-9 && at.z() >= -1e-9 && at.x() <= 0.4 + 1e-9 && at.y() <= 0.4 + 1e-9 && at.z() <= 16.0 + 1e-9) << at.transpose();
+    EXPECT_LT(std::min({at.x(), at.y(), at.z(), 0.4 - at.x(), 0.4 - at.y(), 16.0 - at.z()}), 1e-9) << at.transpose();
+    char xyz[64];
+    std::snprintf(xyz, sizeof xyz, "%.4g, %.4g, %.4g", at.x(), at.y(), at.z());
+    const std::string where = "its thinnest region (around " + std::string(xyz) + ") holds 0.";
     EXPECT_EQ(std::count_if(r.warnings.begin(), r.warnings.end(),
-                            [](const std::string& w) { return w.find("decoration is sparse: its thinnest region holds 0.") != std::string::npos &&
+                            [&](const std::string& w) { return w.find("decoration is sparse: " + where) != std::string::npos &&
                                                               w.find("smaller --scale") != std::string::npos; }),
               1)
         << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());

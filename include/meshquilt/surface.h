@@ -116,6 +116,9 @@ struct SurfaceQualityReport {
     /// footprints, divided by the swatch's: smallest and largest over regions.
     double region_density_min = 0.0;
     double region_density_max = 0.0;
+    /// A point of the base near the middle of the thinnest region (the centroid of its face closest
+    /// to the region's area-weighted centre): where to look first when the decoration is sparse.
+    Vec3 region_density_min_at = Vec3::Zero();
     int regions = 0;
     int base_flipped_components = 0;  ///< inside-out components flipped for the synthesis
     /// Shell embedding: vertices on folds of the base (no direction sees all their faces) moved to

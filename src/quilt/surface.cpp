@@ -2890,14 +2890,14 @@ private:
                                "): every placement folded, collided or reached off its patch where the base curves more tightly than the elements are "
                                "wide; choose a smaller --scale or --swatch-size");
         if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning && sw_.spans_swatch())
-            warnings_.push_back("the decoration is sparse: its thinnest region holds " + num(surface_.region_density_min) +
-                                " of the swatch's density, and the swatch's largest element covers " + num(sw_.largest_element_cover) +
+            warnings_.push_back("the decoration is sparse: its thinnest region (around " + num(surface_.region_density_min_at) + ") holds " +
+                                num(surface_.region_density_min) + " of the swatch's density, and the swatch's largest element covers " + num(sw_.largest_element_cover) +
                                 " of its footprint: a connected net or lattice can only be placed whole, and two placements that overlap "
                                 "cannot be merged, so a smaller --scale does not cover more (a swatch of separate elements, such as threads, "
                                 "rings or tiles, covers fully)");
         else if (surface_.regions > 0 && surface_.region_density_min < kSparseWarning)
-            warnings_.push_back("the decoration is sparse: its thinnest region holds " + num(surface_.region_density_min) +
-                                " of the swatch's density (its largest element is " + num(element_diag_ * scale_) +
+            warnings_.push_back("the decoration is sparse: its thinnest region (around " + num(surface_.region_density_min_at) + ") holds " +
+                                num(surface_.region_density_min) + " of the swatch's density (its largest element is " + num(element_diag_ * scale_) +
                                 " base units across, and few fit where the base's features are not much larger); a smaller --scale or --swatch-size covers more fully");
         result.surface = surface_;
         result.warnings = warnings_;
@@ -3012,18 +3012,23 @@ private:
             if (r + 1 < regions) centres.push_back(base_.centroid[far]);
         }
         std::vector<double> base_area(static_cast<std::size_t>(regions), 0.0), elem_area(static_cast<std::size_t>(regions), 0.0);
+        std::vector<Vec3> middle(static_cast<std::size_t>(regions), Vec3::Zero());
         for (std::size_t f = 0; f < F; ++f)
-            if (!strip[f]) base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
+            if (!strip[f]) {
+                base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
+                middle[static_cast<std::size_t>(region[f])] += base_.area[f] * base_.centroid[f];
+            }
         for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
             const int bf = result.anchors[static_cast<std::size_t>(result.mesh.faces[f][0])].face;
             if (strip[static_cast<std::size_t>(bf)]) continue;
             elem_area[static_cast<std::size_t>(region[static_cast<std::size_t>(bf)])] += face_area(result.mesh, f);
         }
         double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-        int counted = 0;
+        int counted = 0, thinnest = -1;
         for (int r = 0; r < regions; ++r) {
             if (base_area[static_cast<std::size_t>(r)] < fp_area) continue;
             const double ratio = elem_area[static_cast<std::size_t>(r)] / base_area[static_cast<std::size_t>(r)] / std::max(surface_.swatch_density, 1e-300);
+            if (ratio < lo) thinnest = r;
             lo = std::min(lo, ratio);
             hi = std::max(hi, ratio);
             ++counted;
@@ -3031,6 +3036,15 @@ private:
         surface_.regions = counted;
         surface_.region_density_min = counted ? lo : 0.0;
         surface_.region_density_max = counted ? hi : 0.0;
+        if (thinnest >= 0) {
+            const Vec3 centre = middle[static_cast<std::size_t>(thinnest)] / base_area[static_cast<std::size_t>(thinnest)];
+            double best = std::numeric_limits<double>::infinity();
+            for (std::size_t f = 0; f < F; ++f)
+                if (region[f] == thinnest && !strip[f] && (base_.centroid[f] - centre).squaredNorm() < best) {
+                    best = (base_.centroid[f] - centre).squaredNorm();
+                    surface_.region_density_min_at = base_.centroid[f];
+                }
+        }
     }
 
     /// make_frame's largest disc as a share of a patch's (0: a patch's); set by mend_threads for

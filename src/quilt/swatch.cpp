@@ -24,6 +24,12 @@ std::string num(double v) {
     return buf;
 }
 
+std::string num(const Vec3& p) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4g, %.4g, %.4g", p.x(), p.y(), p.z());
+    return buf;
+}
+
 double mesh_area(const Mesh& m) {
     double a = 0.0;
     for (std::size_t f = 0; f < m.faces.size(); ++f) a += face_area(m, f);

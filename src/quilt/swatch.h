@@ -100,6 +100,8 @@ int thicken_output(const SwatchData& sw, Mesh* mesh, const std::vector<int>& ele
 
 /// A number for messages: 6 significant digits, no trailing zeros.
 std::string num(double v);
+/// A point for messages: "x, y, z", 4 significant digits each.
+std::string num(const Vec3& p);
 
 /// Largest output either stage attempts, in faces (about 2-3 GB of memory and some minutes).
 inline constexpr double kMaxOutputFaces = 20e6;
