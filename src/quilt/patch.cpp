@@ -130,11 +130,12 @@ void flip_caps(SM& sm, const SharpMap& sharp) {
             if (h == SM::null_halfedge() || sharp[sm.edge(h)] || sm.is_border(sm.edge(h))) continue;
             const SM::Face_index g = sm.face(sm.opposite(h));
             if (cap_edge(g) != SM::null_halfedge()) continue;
-            if (CGAL::halfedge(sm.target(sm.next(h)), sm.target(sm.next(sm.opposite(h))), sm).second) continue;
+            const SM::Vertex_index b = sm.target(sm.next(h)), d = sm.target(sm.next(sm.opposite(h)));
+            if (b == d || CGAL::halfedge(b, d, sm).second) continue;
             const K::Vector_3 across = normal(g);
             CGAL::Euler::flip_edge(h, sm);
-            const SM::Face_index a = sm.face(h), b = sm.face(sm.opposite(h));
-            if (cap_edge(a) == SM::null_halfedge() && cap_edge(b) == SM::null_halfedge() && normal(a) * across > 0.5 && normal(b) * across > 0.5) {
+            const SM::Face_index f1 = sm.face(h), f2 = sm.face(sm.opposite(h));
+            if (cap_edge(f1) == SM::null_halfedge() && cap_edge(f2) == SM::null_halfedge() && normal(f1) * across > 0.5 && normal(f2) * across > 0.5) {
                 flipped = true;
                 continue;
             }
