@@ -45,7 +45,8 @@ protected:
 TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     const fs::path a = dir / "a.obj", b = dir / "b.obj", c = dir / "c.obj", report = dir / "r.json";
     const std::string common = base + " " + swatch + " --scale 0.3 --with-base";
-    ASSERT_EQ(run(common + " --seed 3 -o " + a.string() + " --report " + report.string()).code, 0);
+    const auto first = run(common + " --seed 3 -o " + a.string() + " --report " + report.string());
+    ASSERT_EQ(first.code, 0);
     ASSERT_EQ(run("surface " + common + " --seed 3 -o " + b.string()).code, 0);  // the explicit form
     ASSERT_EQ(run(common + " --seed 4 -o " + c.string()).code, 0);
     const std::string sa = slurp(a);
@@ -61,6 +62,13 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
     EXPECT_EQ(j.at("surface").at("region_density_min_at").size(), 3u);  // a point of the base (SurfaceErrors.ASwatchTooLarge...)
+    // The closing line gives the regions' densities and the thinnest one's place, as the report has them.
+    char summary[200];
+    const auto& sj = j.at("surface");
+    std::snprintf(summary, sizeof summary, "regions at %.3g-%.3g of the swatch's density (thinnest around %.4g, %.4g, %.4g) -> ",
+                  sj.at("region_density_min").get<double>(), sj.at("region_density_max").get<double>(), sj.at("region_density_min_at")[0].get<double>(),
+                  sj.at("region_density_min_at")[1].get<double>(), sj.at("region_density_min_at")[2].get<double>());
+    EXPECT_NE(first.err.find(summary), std::string::npos) << first.err;
     // The scale given is the scale used, and the output file's header records it.
     EXPECT_DOUBLE_EQ(j.at("surface").at("scale").get<double>(), 0.3);
     EXPECT_NE(sa.find("--scale 0.3 --seed 3"), std::string::npos);

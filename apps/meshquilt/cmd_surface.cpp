@@ -25,9 +25,9 @@ struct SurfaceArgs {
     std::string print_report;
 };
 
-std::string num(double v) {
+std::string num(double v, int digits = 10) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
     return buf;
 }
 }  // namespace
@@ -113,6 +113,11 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         }
         if (!global_flags().quiet)
             std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces"
+                      << (r.surface.regions > 0 ? ", regions at " + num(r.surface.region_density_min, 3) + "-" + num(r.surface.region_density_max, 3) +
+                                                      " of the swatch's density (thinnest around " + num(r.surface.region_density_min_at.x(), 4) +
+                                                      ", " + num(r.surface.region_density_min_at.y(), 4) + ", " +
+                                                      num(r.surface.region_density_min_at.z(), 4) + ")"
+                                                : std::string())
                       << (a->output.empty() ? std::string() : " -> " + a->output) << '\n';
         return 0;
     }});
