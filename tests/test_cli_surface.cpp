@@ -2,6 +2,8 @@
 // The main job as a user runs it, `meshquilt BASE SWATCH -o OUT`: exit codes, messages, groups,
 // report, atomic output, determinism.
 
+#include "core/triangle_index.h"
+#include "meshquilt/io.h"
 #include "support/cli_run.h"
 
 #include <gtest/gtest.h>
@@ -61,7 +63,14 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
-    EXPECT_EQ(j.at("surface").at("region_density_min_at").size(), 3u);  // a point of the base (SurfaceErrors.ASwatchTooLarge...)
+    // A point of the base in the thinnest region: on the eight's surface (its centre, or an unset
+    // origin, is not).
+    const auto& at_json = j.at("surface").at("region_density_min_at");
+    ASSERT_EQ(at_json.size(), 3u);
+    const meshquilt::Vec3 thinnest(at_json[0].get<double>(), at_json[1].get<double>(), at_json[2].get<double>());
+    const meshquilt::Mesh eight = meshquilt::read_mesh(base);
+    EXPECT_LT(meshquilt::TriangleIndex(eight).closest(thinnest).distance, 1e-9 * meshquilt::bounding_box(eight).size().norm()) << thinnest.transpose();
+    EXPECT_GT(meshquilt::TriangleIndex(eight).closest(meshquilt::Vec3::Zero()).distance, 0.01);
     // The closing line gives the regions' densities and the thinnest one's place, as the report has them.
     char summary[200];
     const auto& sj = j.at("surface");
