@@ -202,6 +202,15 @@ TEST(Merging, ThreadsKeepTheirWidthWhereTheyMeet) {
     const Sections s = sections(*joined, 4.0, 12.0, Vec2(0.06, 0.02));
     EXPECT_GT(s.count, 50);
     EXPECT_GT(s.narrowest, 0.95 * 0.4) << "the stitched thread is narrower where the threads met";
+
+    // The paper's targets alone (what the surface stage keeps) narrow it.
+    params.keep_thread_widths = false;
+    const mq::quilt::PatchPlan paper = mq::quilt::plan_patch({{0, old_thread, 0}}, {{0, new_thread}}, ov, params);
+    const Mesh* narrowed = nullptr;
+    for (const auto& ch : paper.changes)
+        if (ch.kind == mq::quilt::PatchPlan::Change::Stitched) narrowed = &ch.mesh;
+    ASSERT_NE(narrowed, nullptr);
+    EXPECT_LT(sections(*narrowed, 4.0, 12.0, Vec2(0.06, 0.02)).narrowest, 0.95 * 0.4);
 }
 
 TEST(Correspondences, RingsPairOnlyWithRingsOfTheirSize) {

@@ -687,17 +687,20 @@ void whole_section_targets(const Mesh& m, std::vector<PointConstraint>* cons) {
                     c.bary[2] * m.vertices[static_cast<std::size_t>(c.v[2])];
         shift[k] = c.target - source[k];
     }
-    // A sweep along x over the sources in x order.
+    // A sweep over the sources in order along the axis (x or y) they spread most along.
+    Box3 spread;
+    for (const Vec3& p : source) spread.extend(p);
+    const int a = spread.size().x() >= spread.size().y() ? 0 : 1;
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return source[a].x() < source[b].x() || (source[a].x() == source[b].x() && a < b); });
+    std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return source[i][a] < source[j][a] || (source[i][a] == source[j][a] && i < j); });
     std::size_t first = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& p = source[order[i]];
-        while (source[order[first]].x() < p.x() - r) ++first;
+        while (source[order[first]][a] < p[a] - r) ++first;
         Vec3 sum = Vec3::Zero();
         int count = 0;
-        for (std::size_t j = first; j < n && source[order[j]].x() <= p.x() + r; ++j)
+        for (std::size_t j = first; j < n && source[order[j]][a] <= p[a] + r; ++j)
             if ((source[order[j]] - p).squaredNorm() <= r * r) {
                 sum += shift[order[j]];
                 ++count;
@@ -834,7 +837,7 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
         seam.insert(seam.end(), loops_out[i].begin(), loops_out[i].end());
         seam.insert(seam.end(), lb.begin(), lb.end());
     }
-    relax_seam(joined, seam, params.smoothing_rings, 4, is_elongated(c_out) && is_elongated(c_in));
+    relax_seam(joined, seam, params.smoothing_rings, 4, params.keep_thread_widths && is_elongated(c_out) && is_elongated(c_in));
 
     if (!is_closed_oriented(joined)) return fail("joined element not closed");
     if (count_components(joined) != 1) return fail("joined element in pieces");
@@ -925,6 +928,17 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
     plan.correspondences = static_cast<int>(matched.size());
     std::vector<PatchPlan::Change> merged_changes(matched.size()), squeezed(matched.size()), remnants(matched.size());
     std::vector<std::string> failures(matched.size());
+    // The old elements and obstacles, for the test of a stitched thread's first try (below): does
+    // it cross an old element but its own? (The new patch's elements are not tested: some of them
+    // will not land, and the stage tests what does.) Built only when two threads correspond.
+    ElementCollider standing;
+    std::vector<int> standing_id(old.size(), -1);
+    if (params.keep_thread_widths && std::any_of(matched.begin(), matched.end(), [&](std::size_t o) {
+            return is_elongated(old[o].mesh) && is_elongated(fresh[static_cast<std::size_t>(partner_of_old[o])].mesh);
+        })) {
+        for (std::size_t o = 0; o < old.size(); ++o) standing_id[o] = standing.add(old[o].mesh);
+        for (const Mesh& ob : obstacles) standing.add(ob);
+    }
     tbb::parallel_for(std::size_t(0), matched.size(), [&](std::size_t k) {
         const std::size_t o = matched[k];
         const int e = partner_of_old[o];
@@ -952,17 +966,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             for (std::size_t v = 0; v < mo.vertices.size(); ++v) fixed_out[v] = !in_overlap(ov.old_side, mo.vertices[v]);
             for (std::size_t v = 0; v < mi.vertices.size(); ++v) fixed_in[v] = !in_overlap(ov.new_side, mi.vertices[v]);
         }
-        // Does a stitched thread cross an old element (but its own) or an obstacle? (The new patch's
-        // elements are not tested: some of them will not land, and the stage tests what does.)
-        auto crosses_old = [&](const Mesh& m) {
-            const Box3 box = bounding_box(m);
-            auto hit = [&](const Mesh& other) { return box.overlaps(bounding_box(other)) && meshes_intersect(m, other); };
-            for (std::size_t o2 = 0; o2 < old.size(); ++o2)
-                if (o2 != o && hit(old[o2].mesh)) return true;
-            for (const Mesh& ob : obstacles)
-                if (hit(ob)) return true;
-            return false;
-        };
+        auto crosses_old = [&](const Mesh& m) { return standing.collides(m, {standing_id[o]}); };
 
         // Section 2.7: merge.
         PatchPlan::Change ch;
@@ -976,7 +980,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         // which keeps their width; the paper's targets are the second try when that stitch fails or
         // crosses an old element (a thread moved whole towards its partner may reach into a crossing
         // thread that the paper's targets, narrowing it, would have cleared).
-        for (int attempt = threads ? 0 : 1; attempt < 2 && !stitched; ++attempt) {
+        for (int attempt = threads && params.keep_thread_widths ? 0 : 1; attempt < 2 && !stitched; ++attempt) {
             std::vector<PointConstraint> co = cons_out, ci = cons_in;
             if (attempt == 0) {
                 whole_section_targets(mo, &co);
