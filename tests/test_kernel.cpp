@@ -166,6 +166,7 @@ TEST(Stitching, ARoundThreadKeepsItsWidthAtTheSeam) {
     ov.new_side = [](double x, double) { return x < 10.0; };
     mq::quilt::KernelParams params;
     params.metric.unit = 0.125;
+    params.keep_thread_widths = true;
     Mesh joined;
     std::string why;
     mq::quilt::StitchOutcome outcome = mq::quilt::StitchOutcome::KeepOld;
@@ -189,6 +190,7 @@ TEST(Merging, ThreadsKeepTheirWidthWhereTheyMeet) {
     ov.new_side = [](double x, double) { return x < 10.0; };
     mq::quilt::KernelParams params;
     params.metric.unit = 0.125;
+    params.keep_thread_widths = true;
     const mq::quilt::PatchPlan plan = mq::quilt::plan_patch({{0, old_thread, 0}}, {{0, new_thread}}, ov, params);
     ASSERT_EQ(plan.correspondences, 1);
     const Mesh* joined = nullptr;
@@ -203,7 +205,7 @@ TEST(Merging, ThreadsKeepTheirWidthWhereTheyMeet) {
     EXPECT_GT(s.count, 50);
     EXPECT_GT(s.narrowest, 0.95 * 0.4) << "the stitched thread is narrower where the threads met";
 
-    // The paper's targets alone (what the surface stage keeps) narrow it.
+    // The paper's targets alone (the default) narrow it.
     params.keep_thread_widths = false;
     const mq::quilt::PatchPlan paper = mq::quilt::plan_patch({{0, old_thread, 0}}, {{0, new_thread}}, ov, params);
     const Mesh* narrowed = nullptr;

@@ -29,11 +29,12 @@ struct KernelParams {
     /// still handed back as an addition (a remnant: it overlaps the winner), for a caller that cuts
     /// threads where they collide (the surface stage, quilt/trim.h). Off: the loser is dropped.
     bool thread_remnants = false;
-    /// Beyond the paper: two threads deform with whole cross-sections first (whole_section_targets,
-    /// the paper's targets when that stitch fails or crosses an old element), and a thread's seam
-    /// is relaxed by Taubin's shrinking and inflating steps, so threads keep their width where
-    /// patches meet. The surface stage turns it off: docs/planar.md, element deformation.
-    bool keep_thread_widths = true;
+    /// Beyond the paper, off by default: two threads deform with whole cross-sections first
+    /// (whole_section_targets; the paper's targets when that stitch fails or crosses an old
+    /// element), and a thread's seam is relaxed by Taubin's shrinking and inflating steps, so
+    /// threads keep their width where patches meet. It costs more than the planar and surface
+    /// speed targets allow (docs/planar.md, element deformation).
+    bool keep_thread_widths = false;
     /// Beyond the paper: the swatch is layered (SwatchData::layered: overlapping scales). A stitch of
     /// two compact elements must then not reach beyond both halves' elements by more than
     /// kMaxStitchReach (partners offset by a row would join into one long scale).

@@ -294,10 +294,6 @@ public:
         params_.metric.unit = sw_.mean_edge;
         params_.mu = opt_.mu;
         params_.thread_remnants = true;
-        // Threads keep the paper's deformation here: on the surface more than half of the
-        // whole-section stitches cross an old thread and are redone, for 70% more merging time
-        // (Bunny + Weave 50.8 -> 63.2 s) and no gain in the thinnest regions (docs/planar.md).
-        params_.keep_thread_widths = false;
         params_.layered = sw_.layered;
         params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
         rng_.seed(opt_.seed);
