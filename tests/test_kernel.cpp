@@ -102,9 +102,10 @@ TEST(Stitching, TwoThreadsBecomeOneAndMoveOnlyNearTheSeam) {
     EXPECT_GT(checked, 50);
 }
 
-// A round thread along x over [x0, x0 + 10]: a tube of radius `r` with 12 sides, a ring of vertices
+// A round thread along x over [x0, x0 + 10]: a tube of radius 0.2 with 12 sides, a ring of vertices
 // every 0.125, closed by fans; offset in y and z.
-Mesh round_thread(double x0, double dy, double dz, double r = 0.2) {
+Mesh round_thread(double x0, double dy, double dz) {
+    constexpr double r = 0.2;
     constexpr int sides = 12, rings = 81;
     Mesh m;
     for (int i = 0; i < rings; ++i)
@@ -154,6 +155,28 @@ Sections sections(const Mesh& m, double x0, double x1, const Vec2& axis) {
     return s;
 }
 
+/// The overlap of an old round thread over [0, 10] and a new one over [6, 16]: the new patch
+/// covers x >= 6, the output x < 10.
+mq::quilt::Overlap round_threads_overlap() {
+    mq::quilt::Overlap ov;
+    ov.old_side = [](double x, double) { return x >= 6.0; };
+    ov.new_side = [](double x, double) { return x < 10.0; };
+    return ov;
+}
+/// Kernel parameters for round threads (mean edge 0.125), keeping thread widths.
+mq::quilt::KernelParams round_threads_params() {
+    mq::quilt::KernelParams params;
+    params.metric.unit = 0.125;
+    params.keep_thread_widths = true;
+    return params;
+}
+/// The stitched element of a plan, or null.
+const Mesh* stitched_mesh(const mq::quilt::PatchPlan& plan) {
+    for (const auto& ch : plan.changes)
+        if (ch.kind == mq::quilt::PatchPlan::Change::Stitched) return &ch.mesh;
+    return nullptr;
+}
+
 TEST(Stitching, ARoundThreadKeepsItsWidthAtTheSeam) {
     // The seam's relaxation used plain Laplacian steps, which pull a tube in towards its axis: the
     // stitched thread was pinched to about 0.85 of its radius there (a weave lost a few percent of
@@ -161,12 +184,8 @@ TEST(Stitching, ARoundThreadKeepsItsWidthAtTheSeam) {
     const Mesh old_thread = round_thread(0.0, 0.0, 0.0);
     const Mesh new_thread = round_thread(6.0, 0.03, 0.01);
     ASSERT_TRUE(mq::quilt::is_closed_oriented(old_thread));
-    mq::quilt::Overlap ov;
-    ov.old_side = [](double x, double) { return x >= 6.0; };
-    ov.new_side = [](double x, double) { return x < 10.0; };
-    mq::quilt::KernelParams params;
-    params.metric.unit = 0.125;
-    params.keep_thread_widths = true;
+    const mq::quilt::Overlap ov = round_threads_overlap();
+    mq::quilt::KernelParams params = round_threads_params();
     Mesh joined;
     std::string why;
     mq::quilt::StitchOutcome outcome = mq::quilt::StitchOutcome::KeepOld;
@@ -185,17 +204,11 @@ TEST(Merging, ThreadsKeepTheirWidthWhereTheyMeet) {
     // patches met). Deformed with whole cross-sections, the stitched thread keeps its width.
     const Mesh old_thread = round_thread(0.0, 0.0, 0.0);
     const Mesh new_thread = round_thread(6.0, 0.12, 0.04);
-    mq::quilt::Overlap ov;
-    ov.old_side = [](double x, double) { return x >= 6.0; };
-    ov.new_side = [](double x, double) { return x < 10.0; };
-    mq::quilt::KernelParams params;
-    params.metric.unit = 0.125;
-    params.keep_thread_widths = true;
+    const mq::quilt::Overlap ov = round_threads_overlap();
+    mq::quilt::KernelParams params = round_threads_params();
     const mq::quilt::PatchPlan plan = mq::quilt::plan_patch({{0, old_thread, 0}}, {{0, new_thread}}, ov, params);
     ASSERT_EQ(plan.correspondences, 1);
-    const Mesh* joined = nullptr;
-    for (const auto& ch : plan.changes)
-        if (ch.kind == mq::quilt::PatchPlan::Change::Stitched) joined = &ch.mesh;
+    const Mesh* joined = stitched_mesh(plan);
     ASSERT_NE(joined, nullptr) << "the threads were not stitched";
     ASSERT_TRUE(mq::quilt::is_closed_oriented(*joined));
     const mq::Box3 box = mq::bounding_box(*joined);
@@ -208,9 +221,7 @@ TEST(Merging, ThreadsKeepTheirWidthWhereTheyMeet) {
     // The paper's targets alone (the default) narrow it.
     params.keep_thread_widths = false;
     const mq::quilt::PatchPlan paper = mq::quilt::plan_patch({{0, old_thread, 0}}, {{0, new_thread}}, ov, params);
-    const Mesh* narrowed = nullptr;
-    for (const auto& ch : paper.changes)
-        if (ch.kind == mq::quilt::PatchPlan::Change::Stitched) narrowed = &ch.mesh;
+    const Mesh* narrowed = stitched_mesh(paper);
     ASSERT_NE(narrowed, nullptr);
     EXPECT_LT(sections(*narrowed, 4.0, 12.0, Vec2(0.06, 0.02)).narrowest, 0.95 * 0.4);
 }

@@ -981,13 +981,15 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         // crosses an old element (a thread moved whole towards its partner may reach into a crossing
         // thread that the paper's targets, narrowing it, would have cleared).
         for (int attempt = threads && params.keep_thread_widths ? 0 : 1; attempt < 2 && !stitched; ++attempt) {
-            std::vector<PointConstraint> co = cons_out, ci = cons_in;
+            std::vector<PointConstraint> whole_out, whole_in;  // the first try's targets
             if (attempt == 0) {
-                whole_section_targets(mo, &co);
-                whole_section_targets(mi, &ci);
+                whole_out = cons_out;
+                whole_in = cons_in;
+                whole_section_targets(mo, &whole_out);
+                whole_section_targets(mi, &whole_in);
             }
-            out_d.vertices = laplacian_deform(mo, co, params.mu, fixed_out);
-            in_d.vertices = laplacian_deform(mi, ci, params.mu, fixed_in);
+            out_d.vertices = laplacian_deform(mo, attempt == 0 ? whole_out : cons_out, params.mu, fixed_out);
+            in_d.vertices = laplacian_deform(mi, attempt == 0 ? whole_in : cons_in, params.mu, fixed_in);
             merged = Mesh();
             why.clear();
             outcome = StitchOutcome::Stitched;
