@@ -23,6 +23,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -597,6 +598,26 @@ TEST_F(IoTest, WritingThroughASymlinkUpdatesItsTarget) {
     EXPECT_TRUE(fs::is_symlink(path("link.obj")));
     EXPECT_EQ(read_mesh(path("real.obj")).num_faces(), 12u);
     EXPECT_EQ(listing(), (std::vector<std::string>{"link.obj", "real.obj"}));
+}
+
+TEST_F(IoTest, WritingToANamedPipeStreamsIntoItAndLeavesItAPipe) {
+    // A device or a pipe (/dev/stdout, /dev/null, a FIFO) is written in place: renaming a temporary
+    // file over it would replace the node with a regular file. The read end is opened first without
+    // blocking, so that the write neither waits for a reader nor leaves the test hanging if it misses
+    // the pipe; a cube's OBJ fits the pipe's buffer.
+    const std::string fifo = path("out.obj");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const int fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(fd, 0);
+    write_mesh(fifo, shapes::cube());
+    std::string received;
+    char buffer[4096];
+    for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) received.append(buffer, static_cast<std::size_t>(n));
+    ::close(fd);
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    ASSERT_FALSE(received.empty());
+    EXPECT_EQ(parse_mesh("out.obj", received).num_faces(), 12u);
+    EXPECT_EQ(listing(), std::vector<std::string>{"out.obj"});
 }
 
 TEST_F(IoTest, EmptyPathIsAnIoError) {

@@ -2,6 +2,9 @@
 // write_file_atomic(): temporary file in the target's directory, every write and the close
 // checked, then rename() over the target. A failure removes the temporary file and leaves the
 // target as it was. No fsync: this protects against failed writes, not against power loss.
+// A target that is neither a regular file nor a directory (a device such as /dev/null or
+// /dev/stdout, a named pipe) is written in place: renaming over it would replace the device node
+// with a regular file (as root) or fail for want of a writable /dev.
 
 #include "meshquilt/errors.h"
 #include "meshquilt/io.h"
@@ -23,6 +26,22 @@ namespace {
     throw IoError(path + ": cannot write: " + what + std::strerror(err));
 }
 
+/// Writes all of `contents` to `fd` (retrying interrupted and short writes); false with errno set on failure.
+bool write_all(int fd, const std::string& contents) {
+    const char* p = contents.data();
+    std::size_t left = contents.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return false;
+        }
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
 }  // namespace
 
 void write_file_atomic(const std::string& path, const std::string& contents) {
@@ -38,6 +57,17 @@ void write_file_atomic(const std::string& path, const std::string& contents) {
     const std::string name = target.filename().string();
     if (name.empty() || name == "." || name == "..") throw IoError(path + ": cannot write: not a file name");
     const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    if (struct stat existing {}; ::stat(target.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode) && !S_ISDIR(existing.st_mode)) {
+        const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
+        if (fd < 0) write_failed(path, "", errno);
+        if (!write_all(fd, contents)) {
+            const int err = errno;
+            ::close(fd);
+            write_failed(path, "", err);
+        }
+        if (::close(fd) != 0) write_failed(path, "", errno);
+        return;
+    }
 
     static std::atomic<unsigned> counter{0};
     const fs::path temp =
@@ -51,19 +81,11 @@ void write_file_atomic(const std::string& path, const std::string& contents) {
     struct stat st {};
     if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) (void)::fchmod(fd, st.st_mode & 07777);
 
-    const char* p = contents.data();
-    std::size_t left = contents.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd, p, left);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            const int err = errno;
-            ::close(fd);
-            ::unlink(temp.c_str());
-            write_failed(path, "", err);
-        }
-        p += n;
-        left -= static_cast<std::size_t>(n);
+    if (!write_all(fd, contents)) {
+        const int err = errno;
+        ::close(fd);
+        ::unlink(temp.c_str());
+        write_failed(path, "", err);
     }
     if (::close(fd) != 0) {
         const int err = errno;
