@@ -281,6 +281,10 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
         // leave nothing to mend; on a doubly curved one it does not.
         if (c.name != "tube_weave") EXPECT_GT(run.r.surface.threads_mended, 0);
         EXPECT_GE(run.r.surface.threads_filled, run.r.surface.threads_mended);
+        // ... and where the threads beside a gap run at an angle to the patch's frame (another
+        // patch's lattice on a doubly curved base), some go in turned to run with them.
+        if (c.name != "tube_weave") EXPECT_GT(run.r.surface.threads_turned, 0);
+        EXPECT_GE(run.r.surface.threads_filled, run.r.surface.threads_turned);
     }
     // Joints wider than the swatch's are closed on a paving only (cobbles' joints are a tenth of
     // a stone; pebbles' and rivets' half of one or more).
@@ -324,6 +328,10 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     // The paving's holes closed after the last patch lift its thinnest region (0.931; 0.891
     // when only straight sides were pushed into joints).
     if (c.swatch == "cobbles") EXPECT_GE(lo, 0.91) << "the holes between the patches' stones were left open";
+    // Threads laid into a weave's gaps are squashed where a crossing thread leaves less room than
+    // their thickness (quilt::woven) and turned with the threads beside the gap: the eight's
+    // thinnest region 0.899 -> 0.930, the torus's 0.932 -> 0.950 (session 33).
+    if (c.swatch == "weave") EXPECT_GE(lo, 0.91) << "the gaps between the patches' threads were left open";
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -201,13 +201,35 @@ namespace {
 
 /// A straight tube along y at `x` from y = -2 to 2 (41 cross-sections), centred at height `z`,
 /// half-width 0.4, half-height 0.15: a crossing thread at one height.
-Mesh crossing_at(double x, double z) {
+Mesh crossing_at(double x, double z, double half_height = 0.15) {
     std::vector<Vec3> centre, across;
     for (int r = 0; r <= 40; ++r) {
         centre.emplace_back(x, -2.0 + 0.1 * r, z);
         across.emplace_back(1, 0, 0);
     }
-    return sweep(centre, across, 0.4, 0.15, true);
+    return sweep(centre, across, 0.4, half_height, true);
+}
+
+/// A straight thread along x from 0 to 10 (101 cross-sections) at height 0.5, half-width 0.4,
+/// half-height 0.2.
+Mesh straight_thread() {
+    std::vector<Vec3> centre, across;
+    for (int r = 0; r <= 100; ++r) {
+        centre.emplace_back(0.1 * r, 0.0, 0.5);
+        across.emplace_back(0, 1, 0);
+    }
+    return sweep(centre, across, 0.4, 0.2, false);
+}
+
+/// The lowest and highest heights of `m`'s vertices within 0.05 of x.
+std::pair<double, double> heights_at(const Mesh& m, double x) {
+    double lo = 2.0, hi = -1.0;
+    for (const Vec3& v : m.vertices)
+        if (std::fabs(v.x() - x) < 0.05) {
+            lo = std::min(lo, v.z());
+            hi = std::max(hi, v.z());
+        }
+    return {lo, hi};
 }
 
 }  // namespace
@@ -215,12 +237,7 @@ Mesh crossing_at(double x, double z) {
 TEST(Woven, PassesOverAndUnderIrregularCrossingThreadsWithinTheHeight) {
     // A thread along x at mid height (0.3-0.7 of [0, 1]) meets six crossing threads, low or high in
     // no regular order and at irregular spacings: straight, it cuts through every one of them.
-    std::vector<Vec3> centre, across;
-    for (int r = 0; r <= 100; ++r) {
-        centre.emplace_back(0.1 * r, 0.0, 0.5);
-        across.emplace_back(0, 1, 0);
-    }
-    const Mesh straight = sweep(centre, across, 0.4, 0.2, false);
+    const Mesh straight = straight_thread();
     ASSERT_TRUE(quilt::is_closed_oriented(straight));
     const std::vector<std::pair<double, double>> at = {{1.3, 0.25}, {2.9, 0.25}, {4.2, 0.75}, {6.1, 0.25}, {7.4, 0.75}, {8.8, 0.75}};
     std::vector<Mesh> crossing;
@@ -244,16 +261,39 @@ TEST(Woven, PassesOverAndUnderIrregularCrossingThreadsWithinTheHeight) {
     expect_whole(w);
     // Over a low thread, under a high one.
     for (const auto& [x, z] : at) {
-        double lo = 2.0, hi = -1.0;
-        for (const Vec3& v : w.vertices)
-            if (std::fabs(v.x() - x) < 0.05) {
-                lo = std::min(lo, v.z());
-                hi = std::max(hi, v.z());
-            }
+        const auto [lo, hi] = heights_at(w, x);
         if (z < 0.5) EXPECT_GT(lo, z + 0.15) << "over the thread at x = " << x;
         else EXPECT_LT(hi, z - 0.15) << "under the thread at x = " << x;
     }
     // Nothing to weave through: the thread itself.
     const Mesh same = quilt::woven(straight, 0, {}, 0.8, 0.0, 1.0);
     EXPECT_EQ(same.vertices, straight.vertices);
+}
+
+TEST(Woven, IsSquashedWhereACrossingThreadLeavesLessRoomThanItsThickness) {
+    // A crossing thread 0.44 high in the middle of the height [0, 1] leaves 0.28 above and below
+    // it: too little for the thread's 0.4, enough for 0.7 of it. The thread passes squashed there
+    // (as pressed threads do) and keeps its whole thickness a width away.
+    const Mesh straight = straight_thread();
+    const Mesh tight = crossing_at(5.0, 0.5, 0.22);
+    ASSERT_TRUE(mq::meshes_intersect(straight, tight));
+    const Mesh w = quilt::woven(straight, 0, {&tight}, 0.8, 0.0, 1.0);
+    EXPECT_FALSE(mq::meshes_intersect(w, tight));
+    expect_whole(w);
+    const auto [lo, hi] = heights_at(w, 5.0);
+    EXPECT_GE(lo, -1e-9);
+    EXPECT_LE(hi, 1.0 + 1e-9);
+    EXPECT_GE(hi - lo, quilt::kMinSquash * 0.4 - 1e-9);
+    EXPECT_LT(hi - lo, 0.3);
+    for (double x : {2.0, 8.0}) {
+        const auto [l, h] = heights_at(w, x);
+        EXPECT_NEAR(h - l, 0.4, 1e-9) << "whole at x = " << x;
+    }
+    // Where the room is below kMinSquash of the thickness (0.1 of 0.4 here), it is not squashed
+    // further: it still meets the crossing thread, and the caller cuts it there.
+    const Mesh blocking = crossing_at(5.0, 0.5, 0.4);
+    const Mesh b = quilt::woven(straight, 0, {&blocking}, 0.8, 0.0, 1.0);
+    EXPECT_TRUE(mq::meshes_intersect(b, blocking));
+    const auto [blo, bhi] = heights_at(b, 5.0);
+    EXPECT_NEAR(bhi - blo, quilt::kMinSquash * 0.4, 1e-6);
 }

@@ -103,6 +103,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"threads_trimmed", s.threads_trimmed},
                         {"thread_pieces", s.thread_pieces},
                         {"threads_filled", s.threads_filled},
+                        {"threads_turned", s.threads_turned},
                         {"threads_mended", s.threads_mended},
                         {"gaps_closed", s.gaps_closed},
                         {"threads_torn", s.threads_torn},

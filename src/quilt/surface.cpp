@@ -152,6 +152,10 @@ constexpr double kThreadGap = 0.55;
 /// Gaps tried per direction and patch at most (fill_threads_patch; 16 is more than any patch of
 /// the eight, spot or bunny had).
 constexpr int kThreadFillTries = 16;
+/// A gap whose neighbouring threads of the same direction turn from the frame's axis by at least
+/// this much (radians, 3 degrees; parallel_angle) gets a thread turned with them when one along
+/// the axis does not fit.
+constexpr double kThreadTurnMin = 3.0 * M_PI / 180.0;
 /// A thread laid into a gap is tried on kThreadLines lines an eighth of a spacing apart across
 /// it, centred on the gap's knot line, at kThreadShifts shifts along itself over two spacings
 /// (where its ends and its waviness fall), woven through the crossing threads (quilt::woven)...
@@ -1524,7 +1528,15 @@ private:
                 Vec2 line = c;
                 line[1 - along] = knot_line(c, along, crossing);
                 std::deque<Mesh> frames;
-                if (lay_thread(line, along, crossing, locator, footprint, embed, place, measure, &frames)) {
+                // Where the threads that run this way beside the gap turn from the frame's axis (a
+                // neighbouring patch's lattice), a thread along the axis meets them at an angle and
+                // rarely fits: one turned to run with them is tried next.
+                bool laid_here = lay_thread(line, along, 0.0, crossing, locator, footprint, embed, place, measure, &frames);
+                if (const double turn = parallel_angle(c, along, near, runs, ts.spacing); !laid_here && std::fabs(turn) >= kThreadTurnMin) {
+                    laid_here = lay_thread(line, along, turn, crossing, locator, footprint, embed, place, measure, &frames);
+                    if (laid_here) ++surface_.threads_turned;
+                }
+                if (laid_here) {
                     for (Mesh& f : frames) {
                         cov.add(f);
                         laid[static_cast<std::size_t>(along)].push_back(std::move(f));
@@ -1538,6 +1550,40 @@ private:
                             tried[static_cast<std::size_t>(j) * static_cast<std::size_t>(cov.nx()) + static_cast<std::size_t>(i)] = 1;
             }
         }
+    }
+
+    /// The angle (radians, within 45 degrees either way) by which the elements of `near` running
+    /// along axis `along` (runs) turn from that axis within 1.5 `spacing` of `c`: their vertices' principal
+    /// directions there, element by element, averaged by vertex count. 0 when none comes near.
+    static double parallel_angle(const Vec2& c, int along, const std::vector<FrameElement>& near, const std::vector<int>& runs, double spacing) {
+        double sum = 0.0, weight = 0.0;
+        for (std::size_t k = 0; k < near.size(); ++k) {
+            if (runs[k] != along) continue;
+            Vec2 mean = Vec2::Zero();
+            long n = 0;
+            for (const Vec3& v : near[k].mesh.vertices)
+                if ((v.head<2>() - c).norm() < 1.5 * spacing) {
+                    mean += v.head<2>();
+                    ++n;
+                }
+            if (n < 8) continue;
+            mean /= static_cast<double>(n);
+            double sxx = 0.0, syy = 0.0, sxy = 0.0;
+            for (const Vec3& v : near[k].mesh.vertices)
+                if ((v.head<2>() - c).norm() < 1.5 * spacing) {
+                    const Vec2 d = v.head<2>() - mean;
+                    sxx += d.x() * d.x();
+                    syy += d.y() * d.y();
+                    sxy += d.x() * d.y();
+                }
+            double a = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // principal direction, from +x
+            if (along == 1) a -= 0.5 * M_PI;
+            a = std::remainder(a, M_PI);
+            if (std::fabs(a) > 0.25 * M_PI) continue;
+            sum += static_cast<double>(n) * a;
+            weight += static_cast<double>(n);
+        }
+        return weight > 0.0 ? sum / weight : 0.0;
     }
 
     /// Where across a gap (its widest point `c`) a thread laid along axis `along` meets the
@@ -1614,12 +1660,44 @@ private:
     /// `embed` puts a frame mesh on the surface (embed_sized), `place` also refuses one that folds,
     /// `measure` gives the scale in the frame that a frame mesh needs for its size on the surface.
     template <class Embed, class Place, class Measure>
-    bool lay_thread(const Vec2& c, int along, const std::vector<const Mesh*>& crossing, const quilt::PatchLocator& locator,
-                    const Box3& footprint, const Embed& embed, const Place& place, const Measure& measure, std::deque<Mesh>* frames) {
+    bool lay_thread(const Vec2& c, int along, double turn, const std::vector<const Mesh*>& frame_crossing, const quilt::PatchLocator& locator,
+                    const Box3& footprint, const Embed& frame_embed, const Place& frame_place, const Measure& frame_measure,
+                    std::deque<Mesh>* frames) {
         const ThreadSet& ts = thread_sets_[static_cast<std::size_t>(along)];
         const int source = ts.ids[ts.ids.size() / 2];
         const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
         const Box3 box = bounding_box(src);
+        // A thread turned by `turn` about c is laid in a turned copy of the frame, where it runs
+        // along the axis: the crossing threads near c are turned back into it, and what goes onto
+        // the surface is turned forward first.
+        const double ct = std::cos(turn), st = std::sin(turn);
+        auto turned = [&](Mesh m, double sign) {
+            if (turn == 0.0) return m;
+            for (Vec3& v : m.vertices) {
+                const Vec2 d = v.head<2>() - c;
+                v = Vec3(c.x() + ct * d.x() - sign * st * d.y(), c.y() + sign * st * d.x() + ct * d.y(), v.z());
+            }
+            return m;
+        };
+        std::vector<Mesh> turned_crossing;
+        std::vector<const Mesh*> crossing;
+        if (turn == 0.0) crossing = frame_crossing;
+        else {
+            const double reach = std::max(box.size().x(), box.size().y()) + 4.0 * ts.spacing;
+            for (const Mesh* m : frame_crossing) {
+                const Box3 b = bounding_box(*m);
+                if (c.x() < b.min.x() - reach || c.x() > b.max.x() + reach || c.y() < b.min.y() - reach || c.y() > b.max.y() + reach) continue;
+                turned_crossing.push_back(turned(*m, -1.0));
+            }
+            for (const Mesh& m : turned_crossing) crossing.push_back(&m);
+        }
+        auto embed = [&](const Mesh& m, int of, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize) {
+            return frame_embed(turned(m, 1.0), of, fresh, anchors, embedded, resize);
+        };
+        auto place = [&](const Mesh& m, int of, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize) {
+            return frame_place(turned(m, 1.0), of, fresh, anchors, embedded, resize);
+        };
+        auto measure = [&](const Mesh& m) { return frame_measure(turned(m, 1.0)); };
         std::vector<PieceFit> best;
         double best_length = 0.0;
         // The swatch thread through c, shifted k / kThreadShifts of two spacings along itself and
@@ -1636,9 +1714,10 @@ private:
         auto on_footprint = [&](const Mesh& m, std::vector<std::size_t>* kept) {
             std::vector<char> on(m.vertices.size(), 0);
             for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-                const Vec3& p = m.vertices[v];
+                const Vec2 d = m.vertices[v].head<2>() - c;
+                const Vec2 p = turn == 0.0 ? Vec2(m.vertices[v].head<2>()) : Vec2(c.x() + ct * d.x() - st * d.y(), c.y() + st * d.x() + ct * d.y());
                 on[v] = static_cast<char>(p.x() >= footprint.min.x() && p.y() >= footprint.min.y() && p.x() <= footprint.max.x() &&
-                                          p.y() <= footprint.max.y() && locator.locate(p.head<2>(), 0.0).inside);
+                                          p.y() <= footprint.max.y() && locator.locate(p, 0.0).inside);
             }
             for (std::size_t f = 0; f < m.faces.size(); ++f)
                 if (on[static_cast<std::size_t>(m.faces[f][0])] && on[static_cast<std::size_t>(m.faces[f][1])] && on[static_cast<std::size_t>(m.faces[f][2])])
@@ -1701,6 +1780,7 @@ private:
             }
         }
         if (best.empty()) return false;
+        for (PieceFit& f : best) f.frame = turned(std::move(f.frame), 1.0);
         add_pieces(std::move(best), source, frames);
         return true;
     }

@@ -140,10 +140,11 @@ double median_thickness(const std::vector<double>& lo, const std::vector<double>
     return t[t.size() / 2];
 }
 
-/// A crossing thread met by a thread along axis `along`: the middle of its run of cells (in
-/// cells from t0) and the lowest and highest heights of its vertices there.
+/// A crossing thread met by a thread along axis `along`: its run of cells [first, last] (in cells
+/// from t0) and the lowest and highest heights of its vertices in each of them.
 struct CrossingRun {
-    double at, lo, hi;
+    long first = 0, last = 0;
+    std::vector<double> lo, hi;
 };
 
 /// The runs of the `crossing` threads' vertices within `width` / 2 of line `u` (across axis
@@ -165,25 +166,16 @@ static std::vector<CrossingRun> crossing_runs(int along, double u, double width,
             ++i;
             continue;
         }
-        long j = i;
-        CrossingRun r{0.0, inf, -inf};
-        for (; j < n && hi[static_cast<std::size_t>(j)] > -inf; ++j) {
-            r.lo = std::min(r.lo, lo[static_cast<std::size_t>(j)]);
-            r.hi = std::max(r.hi, hi[static_cast<std::size_t>(j)]);
+        CrossingRun r;
+        r.first = i;
+        for (; i < n && hi[static_cast<std::size_t>(i)] > -inf; ++i) {
+            r.lo.push_back(lo[static_cast<std::size_t>(i)]);
+            r.hi.push_back(hi[static_cast<std::size_t>(i)]);
         }
-        r.at = 0.5 * static_cast<double>(i + j - 1);
-        runs.push_back(r);
-        i = j;
+        r.last = i - 1;
+        runs.push_back(std::move(r));
     }
     return runs;
-}
-
-/// Where a thread `thick` high passes crossing run `r` between heights zmin and zmax: its centre
-/// in the middle of the larger room above or below it, kept inside [zmin, zmax].
-double pass(const CrossingRun& r, double thick, double zmin, double zmax) {
-    const double over = zmax - r.hi, under = r.lo - zmin;
-    const double z = over >= under ? r.hi + 0.5 * over : zmin + 0.5 * under;
-    return std::clamp(z, zmin + 0.5 * thick, std::max(zmax - 0.5 * thick, zmin + 0.5 * thick));
 }
 
 }  // namespace
@@ -232,11 +224,34 @@ Mesh woven(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, d
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<double> lo, hi;
     cell_heights(m, along, t0, cell, n, &lo, &hi);
-    // Knots: (cell at the middle of a crossing run, target centre height), the thread's
-    // height its median thickness across the cells.
     const double thick = median_thickness(lo, hi);
+    // Knots: (cell, target centre height), cell by cell through each crossing run, on the side
+    // (over or under) with the more room at the run's narrowest cell; and per cell the share of its
+    // thickness the thread keeps there (squash: 1 where the room takes it whole).
     std::vector<std::pair<double, double>> knots;
-    for (const CrossingRun& r : crossing_runs(along, u, width, t0, cell, n, crossing)) knots.emplace_back(r.at, pass(r, thick, zmin, zmax));
+    std::vector<double> squash(static_cast<std::size_t>(n), 1.0);
+    for (const CrossingRun& r : crossing_runs(along, u, width, t0, cell, n, crossing)) {
+        double over = inf, under = inf;
+        for (std::size_t k = 0; k < r.lo.size(); ++k) {
+            over = std::min(over, zmax - r.hi[k]);
+            under = std::min(under, r.lo[k] - zmin);
+        }
+        const bool above = over >= under;
+        for (std::size_t k = 0; k < r.lo.size(); ++k) {
+            const double room = std::max(above ? zmax - r.hi[k] : r.lo[k] - zmin, 0.0);
+            const double keep = thick > 0.0 && room < thick ? std::max(kSquashFill * room / thick, kMinSquash) : 1.0;
+            const double half = 0.5 * keep * thick;
+            const double z = above ? r.hi[k] + 0.5 * room : zmin + 0.5 * room;
+            knots.emplace_back(static_cast<double>(r.first + static_cast<long>(k)), std::clamp(z, zmin + half, std::max(zmax - half, zmin + half)));
+            // The squash eases back to the whole thickness over a thread's width either side.
+            const long at = r.first + static_cast<long>(k);
+            for (long i = std::max(0L, at - 4); i <= std::min(n - 1, at + 4); ++i) {
+                const double d = std::max(0.0, std::fabs(static_cast<double>(i - at)) - 1.0) / 3.0;
+                const double w = d >= 1.0 ? 0.0 : 0.5 + 0.5 * std::cos(d * 3.14159265358979323846);
+                squash[static_cast<std::size_t>(i)] = std::min(squash[static_cast<std::size_t>(i)], 1.0 - (1.0 - keep) * w);
+            }
+        }
+    }
     if (knots.empty()) return m;
     // The thread's own centre line, per bin (empty bins take their neighbours').
     std::vector<double> centre(static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN());
@@ -255,16 +270,18 @@ Mesh woven(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, d
         const double ease = 0.5 - 0.5 * std::cos(s * 3.14159265358979323846);
         return knots[k - 1].second + ease * (knots[k].second - knots[k - 1].second);
     };
-    auto own = [&](double b) {
+    // Linear between bin centres (own centre line, squash).
+    auto per_bin = [&](const std::vector<double>& values, double b) {
         const double f = std::clamp(b, 0.0, static_cast<double>(n - 1));
         const auto i = static_cast<std::size_t>(std::min(static_cast<long>(f), n - 2 < 0 ? 0L : n - 2));
         const double s = f - static_cast<double>(i);
-        return i + 1 < centre.size() ? (1.0 - s) * centre[i] + s * centre[i + 1] : centre[i];
+        return i + 1 < values.size() ? (1.0 - s) * values[i] + s * values[i + 1] : values[i];
     };
     Mesh out = m;
     for (Vec3& v : out.vertices) {
         const double b = (v[along] - t0) / cell - 0.5;  // bin coordinate of v (bin centres at integers)
-        v.z() += target(b) - own(b);
+        const double own = per_bin(centre, b);
+        v.z() = target(b) + per_bin(squash, b) * (v.z() - own);
     }
     return out;
 }

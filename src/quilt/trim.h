@@ -33,16 +33,26 @@ std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, con
 /// length without flags; 0 for an empty mesh.
 double longest_free_span(const Mesh& m, const std::vector<char>& bad, double margin);
 
+/// Beyond the paper: a thread squashed where it passes a crossing thread keeps at least this share
+/// of its thickness (woven).
+inline constexpr double kMinSquash = 0.5;
+/// ... and fills this share of the room it is squashed into, leaving the rest as clearance.
+inline constexpr double kSquashFill = 0.9;
+
 /// Beyond the paper: thread `m` (running along axis `along`, 0 for x or 1 for y, `width` wide)
 /// woven through the `crossing` threads, whose over and under need not follow the thread's own
 /// period (another patch's lattice): the height of its centre line (the middle of its vertices'
 /// heights in each cell a quarter `width` long) is moved, keeping its cross-sections, so that it
 /// passes each crossing thread it meets (a run of cells where crossing vertices lie within
-/// `width` / 2 of its axis) in the middle of the larger room above or below that thread's
-/// vertices there, within [zmin, zmax] and kept inside them by the thread's median thickness. It
-/// eases between those heights along a half cosine and stays level beyond the first and last.
-/// Without crossings, `m` itself. A crossing thread that fills the height over the thread's width
-/// (met halfway up its own slope) still blocks it: the caller's collision test cuts there.
+/// `width` / 2 of its axis) above or below it, on the side with the more room at the run's
+/// narrowest cell, in the middle of that room cell by cell (a crossing thread met at an angle
+/// rises and falls along the run), within [zmin, zmax]. Where the room is less than the thread's
+/// median thickness the thread is squashed in height about its centre line to kSquashFill of the
+/// room, to kMinSquash of its thickness at most, easing back to its whole thickness over a `width` (real threads
+/// flatten where they are pressed together). It eases between the knots along a half cosine and
+/// stays level beyond the first and last. Without crossings, `m` itself. A crossing thread that
+/// leaves less than kMinSquash of the thickness (met halfway up its own slope) still blocks it: the
+/// caller's collision test cuts there.
 Mesh woven(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, double width, double zmin, double zmax);
 
 }  // namespace meshquilt::quilt
