@@ -1655,10 +1655,12 @@ private:
         return longest;
     }
 
-    /// Lays a swatch thread running along axis `along` through frame point `c` (see
-    /// fill_threads_patch); true when any of it went in (frame meshes added to `frames`).
-    /// `embed` puts a frame mesh on the surface (embed_sized), `place` also refuses one that folds,
-    /// `measure` gives the scale in the frame that a frame mesh needs for its size on the surface.
+    /// Lays a swatch thread running along axis `along`, turned by `turn` radians about frame point
+    /// `c`, through c (see fill_threads_patch); true when any of it went in (frame meshes, in the
+    /// frame, added to `frames`). `frame_crossing` are the threads it is woven through.
+    /// `frame_embed` puts a frame mesh on the surface (embed_sized), `frame_place` also refuses one
+    /// that folds, `frame_measure` gives the scale in the frame that a frame mesh needs for its size
+    /// on the surface.
     template <class Embed, class Place, class Measure>
     bool lay_thread(const Vec2& c, int along, double turn, const std::vector<const Mesh*>& frame_crossing, const quilt::PatchLocator& locator,
                     const Box3& footprint, const Embed& frame_embed, const Place& frame_place, const Measure& frame_measure,
