@@ -1441,21 +1441,41 @@ private:
     /// The axis frame mesh `m` runs along: 0 (x) or 1 (y) by its vertices' principal direction, -1
     /// when their spread along it is within 1.5 times that across it (a stub of a thread).
     static int run_direction(const Mesh& m) {
-        if (m.vertices.empty()) return -1;
+        const XyPrincipal p = xy_principal(m, [](const Vec3&) { return true; });
+        if (p.count == 0 || p.major < 2.25 * p.minor) return -1;
+        return std::fabs(std::cos(p.angle)) >= std::fabs(std::sin(p.angle)) ? 0 : 1;
+    }
+
+    /// The principal axes in xy of the vertices of `m` that `keep` takes: their count, the spreads
+    /// (sums of squares) along the major and the minor axis, and the major axis's angle from +x.
+    struct XyPrincipal {
+        long count = 0;
+        double major = 0.0, minor = 0.0, angle = 0.0;
+    };
+    template <class Keep>
+    static XyPrincipal xy_principal(const Mesh& m, const Keep& keep) {
+        XyPrincipal p;
         Vec2 mean = Vec2::Zero();
-        for (const Vec3& v : m.vertices) mean += v.head<2>();
-        mean /= static_cast<double>(m.vertices.size());
+        for (const Vec3& v : m.vertices)
+            if (keep(v)) {
+                mean += v.head<2>();
+                ++p.count;
+            }
+        if (p.count == 0) return p;
+        mean /= static_cast<double>(p.count);
         double sxx = 0.0, syy = 0.0, sxy = 0.0;
-        for (const Vec3& v : m.vertices) {
-            const Vec2 d = v.head<2>() - mean;
-            sxx += d.x() * d.x();
-            syy += d.y() * d.y();
-            sxy += d.x() * d.y();
-        }
+        for (const Vec3& v : m.vertices)
+            if (keep(v)) {
+                const Vec2 d = v.head<2>() - mean;
+                sxx += d.x() * d.x();
+                syy += d.y() * d.y();
+                sxy += d.x() * d.y();
+            }
         const double half = 0.5 * (sxx + syy), disc = std::sqrt(std::max(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy, 0.0));
-        if (half + disc < 2.25 * (half - disc)) return -1;
-        const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-        return std::fabs(std::cos(angle)) >= std::fabs(std::sin(angle)) ? 0 : 1;
+        p.major = half + disc;
+        p.minor = half - disc;
+        p.angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+        return p;
     }
 
     /// Beyond the paper: weave seams. Where the lattices of two patches meet at an angle, the new
@@ -1532,10 +1552,11 @@ private:
                 // neighbouring patch's lattice), a thread along the axis meets them at an angle and
                 // rarely fits: one turned to run with them is tried next.
                 bool laid_here = lay_thread(line, along, 0.0, crossing, locator, footprint, embed, place, measure, &frames);
-                if (const double turn = parallel_angle(c, along, near, runs, ts.spacing); !laid_here && std::fabs(turn) >= kThreadTurnMin) {
-                    laid_here = lay_thread(line, along, turn, crossing, locator, footprint, embed, place, measure, &frames);
-                    if (laid_here) ++surface_.threads_turned;
-                }
+                if (!laid_here)
+                    if (const double turn = parallel_angle(c, along, near, runs, ts.spacing); std::fabs(turn) >= kThreadTurnMin) {
+                        laid_here = lay_thread(line, along, turn, crossing, locator, footprint, embed, place, measure, &frames);
+                        if (laid_here) ++surface_.threads_turned;
+                    }
                 if (laid_here) {
                     for (Mesh& f : frames) {
                         cov.add(f);
@@ -1556,32 +1577,20 @@ private:
     /// along axis `along` (runs) turn from that axis within 1.5 `spacing` of `c`: their vertices' principal
     /// directions there, element by element, averaged by vertex count. 0 when none comes near.
     static double parallel_angle(const Vec2& c, int along, const std::vector<FrameElement>& near, const std::vector<int>& runs, double spacing) {
+        const double r = 1.5 * spacing;
         double sum = 0.0, weight = 0.0;
         for (std::size_t k = 0; k < near.size(); ++k) {
             if (runs[k] != along) continue;
-            Vec2 mean = Vec2::Zero();
-            long n = 0;
-            for (const Vec3& v : near[k].mesh.vertices)
-                if ((v.head<2>() - c).norm() < 1.5 * spacing) {
-                    mean += v.head<2>();
-                    ++n;
-                }
-            if (n < 8) continue;
-            mean /= static_cast<double>(n);
-            double sxx = 0.0, syy = 0.0, sxy = 0.0;
-            for (const Vec3& v : near[k].mesh.vertices)
-                if ((v.head<2>() - c).norm() < 1.5 * spacing) {
-                    const Vec2 d = v.head<2>() - mean;
-                    sxx += d.x() * d.x();
-                    syy += d.y() * d.y();
-                    sxy += d.x() * d.y();
-                }
-            double a = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // principal direction, from +x
+            const Box3 b = bounding_box(near[k].mesh);
+            if (c.x() < b.min.x() - r || c.x() > b.max.x() + r || c.y() < b.min.y() - r || c.y() > b.max.y() + r) continue;
+            const XyPrincipal p = xy_principal(near[k].mesh, [&](const Vec3& v) { return (v.head<2>() - c).norm() < r; });
+            if (p.count < 8) continue;
+            double a = p.angle;  // principal direction, from +x
             if (along == 1) a -= 0.5 * M_PI;
             a = std::remainder(a, M_PI);
             if (std::fabs(a) > 0.25 * M_PI) continue;
-            sum += static_cast<double>(n) * a;
-            weight += static_cast<double>(n);
+            sum += static_cast<double>(p.count) * a;
+            weight += static_cast<double>(p.count);
         }
         return weight > 0.0 ? sum / weight : 0.0;
     }
