@@ -54,6 +54,15 @@ constexpr double kMinHeight = 0.02;
 constexpr double kMinPrismHeight = 1e-4;
 /// Offset directions must make at least this cosine with every incident face's normal.
 constexpr double kMinDirectionCos = shell::kMinSeeingCos;
+/// Smoothing steps of the offset directions everywhere...
+constexpr int kDirectionSteps = 5;
+/// ... and where a prism inverts at full height: steps at most, rounds, and the reach around the
+/// inverted prisms in heights H (offset_directions).
+constexpr int kBumpySteps = 200;
+constexpr int kBumpyRounds = 3;
+constexpr double kBumpyReach = 2.0;
+/// A patch keeps its further smoothing when at most this share of its inverted prisms is left.
+constexpr double kBumpyKeep = 0.5;
 
 /// Corner code of a prism: local corner c (0..2) on the base (c) or on the offset (c + 3).
 using TetCodes = std::array<int, 4>;
@@ -201,18 +210,125 @@ void ShellMap::Impl::offset_directions() {
         return c;
     };
     dir = n;
-    for (int it = 0; it < 5; ++it) {
-        std::vector<Vec3> next = dir;
-        for (std::size_t v = 0; v < V; ++v) {
-            if (ring[v].empty()) continue;
-            Vec3 avg = Vec3::Zero();
-            for (int w : ring[v]) avg += dir[static_cast<std::size_t>(w)];
-            Vec3 d = (1.0 - weight[v]) * dir[v] + weight[v] * avg.normalized();
-            if (d.norm() == 0) continue;
-            d.normalize();
-            if (worst_cos(v, d) >= std::max(kMinDirectionCos, std::min(0.5, worst_cos(v, dir[v])))) next[v] = d;
+    // Jacobi steps; with `steps`, vertex v takes steps[v] of them (none where 0).
+    auto smooth = [&](int rounds, const std::vector<int>* steps) {
+        for (int it = 0; it < rounds; ++it) {
+            std::vector<Vec3> next = dir;
+            for (std::size_t v = 0; v < V; ++v) {
+                if (ring[v].empty() || (steps && (*steps)[v] <= it)) continue;
+                Vec3 avg = Vec3::Zero();
+                for (int w : ring[v]) avg += dir[static_cast<std::size_t>(w)];
+                Vec3 d = (1.0 - weight[v]) * dir[v] + weight[v] * avg.normalized();
+                if (d.norm() == 0) continue;
+                d.normalize();
+                if (worst_cos(v, d) >= std::max(kMinDirectionCos, std::min(0.5, worst_cos(v, dir[v])))) next[v] = d;
+            }
+            dir.swap(next);
         }
-        dir.swap(next);
+    };
+    smooth(kDirectionSteps, nullptr);
+    // Bumpy bases (a scan's skin, with bumps narrower than H): five steps leave neighbouring
+    // directions turned against each other, so prisms at full height invert and the shell is
+    // lowered far around them (the armadillo: 44% of its area at the chain mail's height). Where a
+    // prism inverts at full height, the directions within kBumpyReach H of it are smoothed further,
+    // each vertex by as many steps as spread a direction over about H along its edges
+    // (5 (H / its mean edge)^2, at most kBumpySteps). Each connected patch of such vertices keeps
+    // its smoothing only when that mends most of its inverted prisms (all but kBumpyKeep of them):
+    // bumps are mended so, while a concave place wider than the bumps (a mouth, an eye socket)
+    // is not, and there smoothing would only turn the directions off the normals (session 26
+    // smoothed every vertex more and lost rings on the camelhead). Up to kBumpyRounds rounds.
+    build_tets();
+    top.resize(V);
+    std::vector<double> mean_edge(V, 0.0);
+    for (std::size_t v = 0; v < V; ++v) {
+        for (int w : ring[v]) mean_edge[v] += (base.vertices[static_cast<std::size_t>(w)] - base.vertices[v]).norm();
+        if (!ring[v].empty()) mean_edge[v] /= static_cast<double>(ring[v].size());
+    }
+    auto inverted = [&] {  // per face: its prism at full height inverts or flattens
+        for (std::size_t v = 0; v < V; ++v) top[v] = base.vertices[v] + H * dir[v];
+        std::vector<char> bad(F, 0);
+        for (std::size_t f = 0; f < F; ++f) {
+            const double straight = face_area[f] * H / 3.0;
+            for (int k = 0; k < 3 && !bad[f]; ++k) bad[f] = static_cast<char>(!(world_volume(f, k) > kMinWorldVolume * straight));
+        }
+        return bad;
+    };
+    std::vector<char> kept(V, 0);  // vertices whose smoothing was refused stay as they are
+    std::vector<char> bad = inverted();
+    for (int round = 0; round < kBumpyRounds; ++round) {
+        // Vertices within reach of an inverted prism (Dijkstra along edges).
+        std::vector<double> dist(V, std::numeric_limits<double>::infinity());
+        using Item = std::pair<double, int>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+        for (std::size_t f = 0; f < F; ++f)
+            if (bad[f])
+                for (int k = 0; k < 3; ++k)
+                    if (const auto v = static_cast<std::size_t>(base.faces[f][k]); !kept[v] && dist[v] > 0) {
+                        dist[v] = 0.0;
+                        queue.emplace(0.0, static_cast<int>(v));
+                    }
+        if (queue.empty()) break;
+        const double reach = kBumpyReach * H;
+        while (!queue.empty()) {
+            const auto [d, v] = queue.top();
+            queue.pop();
+            if (d > dist[static_cast<std::size_t>(v)]) continue;
+            for (int w : ring[static_cast<std::size_t>(v)])
+                if (const double dw = d + (base.vertices[static_cast<std::size_t>(w)] - base.vertices[static_cast<std::size_t>(v)]).norm();
+                    !kept[static_cast<std::size_t>(w)] && dw <= reach && dw < dist[static_cast<std::size_t>(w)]) {
+                    dist[static_cast<std::size_t>(w)] = dw;
+                    queue.emplace(dw, w);
+                }
+        }
+        // Connected patches of them.
+        std::vector<int> patch(V, -1);
+        int patches = 0;
+        for (std::size_t s = 0; s < V; ++s) {
+            if (!(dist[s] <= reach) || patch[s] >= 0) continue;
+            std::vector<std::size_t> stack{s};
+            patch[s] = patches;
+            while (!stack.empty()) {
+                const std::size_t v = stack.back();
+                stack.pop_back();
+                for (int w : ring[v])
+                    if (dist[static_cast<std::size_t>(w)] <= reach && patch[static_cast<std::size_t>(w)] < 0) {
+                        patch[static_cast<std::size_t>(w)] = patches;
+                        stack.push_back(static_cast<std::size_t>(w));
+                    }
+            }
+            ++patches;
+        }
+        auto count = [&](const std::vector<char>& b) {  // inverted prisms per patch
+            std::vector<int> n(static_cast<std::size_t>(patches), 0);
+            for (std::size_t f = 0; f < F; ++f) {
+                if (!b[f]) continue;
+                int p = -1;
+                for (int k = 0; k < 3 && p < 0; ++k) p = patch[static_cast<std::size_t>(base.faces[f][k])];
+                if (p >= 0) ++n[static_cast<std::size_t>(p)];
+            }
+            return n;
+        };
+        const std::vector<int> before = count(bad);
+        std::vector<int> steps(V, 0);
+        int most = 0;
+        for (std::size_t v = 0; v < V; ++v) {
+            if (patch[v] < 0 || !(mean_edge[v] > 0.0)) continue;
+            const double r = H / mean_edge[v];
+            steps[v] = static_cast<int>(std::clamp(5.0 * r * r, static_cast<double>(kDirectionSteps), static_cast<double>(kBumpySteps)));
+            most = std::max(most, steps[v]);
+        }
+        const std::vector<Vec3> old = dir;
+        smooth(most, &steps);
+        bad = inverted();
+        const std::vector<int> after = count(bad);
+        bool any = false;
+        for (std::size_t v = 0; v < V; ++v)
+            if (const int p = patch[v]; p >= 0 && after[static_cast<std::size_t>(p)] > kBumpyKeep * before[static_cast<std::size_t>(p)]) {
+                dir[v] = old[v];
+                kept[v] = 1;
+                any = true;
+            }
+        if (any) bad = inverted();
     }
     // Repair directions that do not see every incident face from outside: the direction that best
     // sees them all (maximising the least cosine) lies on a face normal or is equidistant from two
