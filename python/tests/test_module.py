@@ -220,8 +220,10 @@ def test_exception_in_callback_cancels_and_is_reraised(base, rivets):
 
 def test_log_callback_receives_warnings_and_info(base, rivets):
     logs = []
-    r = meshquilt.decorate(*base, *rivets, seed=7, scale=0.5, log=lambda level, text: logs.append((level, text)))
-    assert r.warnings, "this case lowers the shell height and warns about it"
+    vertices, faces = base
+    inside_out = np.ascontiguousarray(faces[:, ::-1])  # the base turned inside out: fixed, with a warning
+    r = meshquilt.decorate(vertices, inside_out, *rivets, seed=7, log=lambda level, text: logs.append((level, text)), **FAST)
+    assert any("facing inwards" in w for w in r.warnings), r.warnings
     assert [t for lvl, t in logs if lvl == "warning"] == r.warnings
     assert any(lvl == "info" and f"{r.num_elements} elements" in t for lvl, t in logs), logs
     assert all(level in ("debug", "info", "warning") and isinstance(text, str) for level, text in logs)
