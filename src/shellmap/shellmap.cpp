@@ -233,10 +233,11 @@ void ShellMap::Impl::offset_directions() {
     // prism inverts at full height, the directions within kBumpyReach H of it are smoothed further,
     // each vertex by as many steps as spread a direction over about H along its edges
     // (5 (H / its mean edge)^2, at most kBumpySteps). Each connected patch of such vertices keeps
-    // its smoothing only when that mends most of its inverted prisms (all but kBumpyKeep of them):
-    // bumps are mended so, while a concave place wider than the bumps (a mouth, an eye socket)
-    // is not, and there smoothing would only turn the directions off the normals (session 26
-    // smoothed every vertex more and lost rings on the camelhead). Up to kBumpyRounds rounds.
+    // its smoothing only when at most kBumpyKeep of the patch's inverted prisms are left: bumps
+    // are mended so, while a concave place wider than the bumps (a mouth, an eye socket) is not,
+    // and there smoothing would only turn the directions off the normals (smoothing every vertex
+    // more, session 26, or every patch tried, session 34, lost rings on the camelhead). Up to
+    // kBumpyRounds rounds; a patch refused is left as it is in later rounds.
     build_tets();
     top.resize(V);
     std::vector<double> mean_edge(V, 0.0);
