@@ -1747,21 +1747,28 @@ private:
         // The thread's width in the frame: where the map magnifies (a small dome such as spot's horns,
         // resize < 1) the thread is narrower there, and so are the runs it needs.
         const double width = resize * ts.width;
-        std::vector<std::pair<double, Mesh>> tries;  // frame free run, thread
-        for (int line = 0; line < kThreadLines; ++line)
-            for (int k = 0; k < kThreadShifts; ++k) {
-                Mesh m = shifted(k, (line - kThreadLines / 2) * ts.spacing / 8.0);
-                for (Vec3& v : m.vertices) v = Vec3(c.x() + resize * (v.x() - c.x()), c.y() + resize * (v.y() - c.y()), v.z());
-                Mesh w = quilt::woven(m, along, crossing, width, sw_.box.min.z(), sw_.box.max.z());
-                const double run = free_run(w, along, crossing, width);
-                if (run >= kThreadFreeRun * kTrimMinLength * width) tries.emplace_back(run, std::move(w));
-            }
+        // The tries are independent (everything they call is const): they run in parallel, and
+        // are then taken in their serial order, so the outcome does not depend on the threads.
+        std::vector<std::pair<double, Mesh>> all(static_cast<std::size_t>(kThreadLines * kThreadShifts));  // frame free run, thread
+        tbb::parallel_for(std::size_t{0}, all.size(), [&](std::size_t t) {
+            const int line = static_cast<int>(t) / kThreadShifts, k = static_cast<int>(t) % kThreadShifts;
+            Mesh m = shifted(k, (line - kThreadLines / 2) * ts.spacing / 8.0);
+            for (Vec3& v : m.vertices) v = Vec3(c.x() + resize * (v.x() - c.x()), c.y() + resize * (v.y() - c.y()), v.z());
+            Mesh w = quilt::woven(m, along, crossing, width, sw_.box.min.z(), sw_.box.max.z());
+            all[t] = {free_run(w, along, crossing, width), std::move(w)};
+        });
+        std::vector<std::pair<double, Mesh>> tries;
+        for (auto& t : all)
+            if (t.first >= kThreadFreeRun * kTrimMinLength * width) tries.push_back(std::move(t));
         // Embedding and testing a try costs more than all else: only the kThreadShiftsEmbedded
         // with the longest free run in the frame are.
         std::stable_sort(tries.begin(), tries.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
         if (tries.size() > kThreadShiftsEmbedded) tries.resize(kThreadShiftsEmbedded);
-        for (auto& attempt : tries) {
-            Mesh& m = attempt.second;
+        // Each try is embedded and tested on its own (in parallel, as above); the first longest wins.
+        std::vector<std::vector<PieceFit>> fits(tries.size());
+        std::vector<double> lengths(tries.size(), 0.0);
+        tbb::parallel_for(std::size_t{0}, tries.size(), [&](std::size_t t) {
+            const Mesh& m = tries[t].second;
             // Flagged: faces off the patch or the footprint, or that collide or fold where the
             // part on both lies on the surface.
             std::vector<std::size_t> kept;
@@ -1769,27 +1776,27 @@ private:
             std::vector<char> bad(m.faces.size(), 1);
             std::vector<SurfacePoint> anchors;
             Mesh embedded;
-            if (part.faces.empty() || !embed(part, source, false, &anchors, &embedded, nullptr)) continue;
+            if (part.faces.empty() || !embed(part, source, false, &anchors, &embedded, nullptr)) return;
             const std::vector<char> hit = collider_.colliding_faces(embedded);
             for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = hit[f];
             const double margin = kTrimMargin * width;
             // Most tries meet crossing threads all along: no piece long enough (checked before the
             // dearer test for folds, which only adds flags).
-            if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * width) continue;
+            if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * width) return;
             if (count_self_intersections(embedded, 1) > 0) {
                 const std::vector<char> folded = self_intersecting_faces(embedded);
                 for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = static_cast<char>(bad[kept[f]] | folded[f]);
             }
             if (const std::vector<char> torn = stretched_faces(part, embedded); !torn.empty())
                 for (std::size_t f = 0; f < kept.size() && f < torn.size(); ++f) bad[kept[f]] = static_cast<char>(bad[kept[f]] | torn[f]);
-            std::vector<PieceFit> fits = clear_pieces(m, source, bad, place);
-            double length = 0.0;
-            for (const PieceFit& f : fits) length += bounding_box(f.frame).size()[along];
-            if (length > best_length) {
-                best_length = length;
-                best = std::move(fits);
+            fits[t] = clear_pieces(m, source, bad, place);
+            for (const PieceFit& f : fits[t]) lengths[t] += bounding_box(f.frame).size()[along];
+        });
+        for (std::size_t t = 0; t < tries.size(); ++t)
+            if (lengths[t] > best_length) {
+                best_length = lengths[t];
+                best = std::move(fits[t]);
             }
-        }
         if (best.empty()) return false;
         for (PieceFit& f : best) f.frame = turned(std::move(f.frame), 1.0);
         add_pieces(std::move(best), source, frames);
@@ -2532,32 +2539,48 @@ private:
             ++surface_.elements_folded;
             return true;
         };
-        const Reach* reach = nullptr;  // of the old element of the change being placed
         auto place_sized = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded,
                                double* resize = nullptr) {
-            return embed_sized(m, source, fresh, flat, locator, hs, local, reach, anchors, embedded, resize);
+            return embed_sized(m, source, fresh, flat, locator, hs, local, nullptr, anchors, embedded, resize);
         };
         auto place = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr) {
             if (!place_sized(m, source, fresh, anchors, embedded, resize)) return false;
             return !folded(*embedded);
         };
-        std::vector<Candidate> pending;
-        std::vector<const Mesh*> applied;  // frame meshes of the changes applied, for nudging
-        for (const auto& ch : plan.changes) {
+        // Each change is embedded on its own (everything it calls is const but the counters, which
+        // each change keeps for itself): in parallel, then taken in the plan's order, so the
+        // outcome does not depend on the threads.
+        struct Built {
             Candidate c;
+            bool placed = false;
+            int folded = 0, torn = 0, enlarged = 0;
+        };
+        std::vector<Built> built(plan.changes.size());
+        tbb::parallel_for(std::size_t{0}, plan.changes.size(), [&](std::size_t i) {
+            const auto& ch = plan.changes[i];
+            Built& b = built[i];
+            Candidate& c = b.c;
             c.change = &ch;
             const bool fresh = ch.kind == Kind::Added || ch.kind == Kind::Replaced;
             const auto r = reach_.find(ch.old_id);
-            reach = ch.old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
+            const Reach* ch_reach = ch.old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
+            auto ch_folded = [&](const Mesh& embedded) {
+                if (count_self_intersections(embedded, 1) == 0) return false;
+                ++b.folded;
+                return true;
+            };
+            auto ch_place_sized = [&](const Mesh& m, int source, bool fresh_, const Reach* at, std::vector<SurfacePoint>* anchors, Mesh* embedded,
+                                      double* resize = nullptr) {
+                return embed_sized(m, source, fresh_, flat, locator, hs, local, at, anchors, embedded, resize);
+            };
             // A new thread that the embedding folds is not dropped whole: it is cut clear of the
             // fold (below), as where it collides.
             const bool thread = ch.kind == Kind::Added && quilt::is_elongated(ch.mesh);
-            const bool placed = thread ? place_sized(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded, &c.resize)
-                                       : place(ch.mesh, ch.source, fresh, &c.anchors, &c.embedded, &c.resize);
-            reach = nullptr;
-            if (!placed) continue;
+            const bool placed = thread ? ch_place_sized(ch.mesh, ch.source, fresh, ch_reach, &c.anchors, &c.embedded, &c.resize)
+                                       : ch_place_sized(ch.mesh, ch.source, fresh, ch_reach, &c.anchors, &c.embedded, &c.resize) && !ch_folded(c.embedded);
+            if (!placed) return;
             if (thread && count_self_intersections(c.embedded, 1) > 0) {
-                ++surface_.elements_folded;
+                ++b.folded;
                 c.folded = self_intersecting_faces(c.embedded);
             }
             // Beyond the paper: a thread whose embedding tore it (an old thread's part beyond the
@@ -2567,7 +2590,7 @@ private:
             // partner goes in cut clear of it, below).
             if (quilt::is_elongated(ch.mesh))
                 if (const std::vector<char> torn = stretched_faces(ch.mesh, c.embedded); !torn.empty()) {
-                    ++surface_.threads_torn;
+                    ++b.torn;
                     if (c.folded.empty()) c.folded.assign(torn.size(), 0);
                     for (std::size_t f = 0; f < torn.size() && f < c.folded.size(); ++f) c.folded[f] = static_cast<char>(c.folded[f] | torn[f]);
                 }
@@ -2578,15 +2601,25 @@ private:
                 const double f = c.resize * kGrowBackSize / std::max(element_size(c.embedded, of, local), 1e-3);
                 std::vector<SurfacePoint> a2;
                 Mesh e2;
-                if (place_sized(resized_in_frame(ch.mesh, f), of, false, &a2, &e2) && !folded(e2)) {
+                if (ch_place_sized(resized_in_frame(ch.mesh, f), of, false, nullptr, &a2, &e2) && !ch_folded(e2)) {
                     c.anchors = std::move(a2);
                     c.embedded = std::move(e2);
                     c.resize = f;
-                    ++surface_.elements_enlarged;
+                    ++b.enlarged;
                 }
             }
-            if (!ch.fallback.faces.empty() && !place(ch.fallback, ch.source, true, &c.fallback_anchors, &c.fallback, &c.fallback_resize)) c.fallback = Mesh();
-            pending.push_back(std::move(c));
+            if (!ch.fallback.faces.empty() &&
+                !(ch_place_sized(ch.fallback, ch.source, true, nullptr, &c.fallback_anchors, &c.fallback, &c.fallback_resize) && !ch_folded(c.fallback)))
+                c.fallback = Mesh();
+            b.placed = true;
+        });
+        std::vector<Candidate> pending;
+        std::vector<const Mesh*> applied;  // frame meshes of the changes applied, for nudging
+        for (Built& b : built) {
+            surface_.elements_folded += b.folded;
+            surface_.threads_torn += b.torn;
+            surface_.elements_enlarged += b.enlarged;
+            if (b.placed) pending.push_back(std::move(b.c));
         }
         // Beyond the paper: an added blob keeps the swatch's clearance from the old elements around it,
         // as in the planar stage; one that does not goes to nudging. (Without it, pebbles came out up
