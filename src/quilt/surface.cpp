@@ -95,11 +95,16 @@ constexpr int kFrameSolidCells = 32;
 /// parts on the frame, kFrameSolidCells along the longest side).
 constexpr double kHoleReach = 2.0;
 /// Tries embedded for ring holes, at most, per ring standing when mending starts,
-constexpr double kHoleBudget = 4.0;
+constexpr double kHoleBudget = 20.0;
 /// ... and at most this many per ring standing (and 1,000) plus this many per ring put into a
-/// hole (hole_budget).
-constexpr double kHoleTriesFree = 1.0;
-constexpr long kHoleTriesPerRing = 50;
+/// hole (hole_budget): holes are tried while at least one try in kHoleTriesPerRing fits. (Chain
+/// mail at the default scale, seed 1: with 1 and 50 the budget ran out on the armadillo after 17
+/// holes had rings, 5,569 tries, with most of its seams not reached; with these 596 holes take
+/// rings in 57,325 tries, the budget never binding, and its mean density rises from 0.865 to
+/// 0.934, the thinnest region's from 0.714 to 0.772; the camelhead 25 -> 413 rings, 0.884 ->
+/// 0.926 and 0.731 -> 0.782.)
+constexpr double kHoleTriesFree = 4.0;
+constexpr long kHoleTriesPerRing = 200;
 /// A mended ring keeps at least this share of its swatch element's size (square root of area).
 constexpr double kMendMinSize = 0.75;
 /// An element the patch places keeps at least this share of its swatch element's size (the square
@@ -2497,7 +2502,10 @@ private:
                 }
                 // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its
                 // swatch element's size (the square root of the area; the stage promises 1.5).
-                if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) continue;
+                // Turned it keeps its size, and shrunk further it only loses more: the slot is given
+                // up (where the shell is lowered most holes fail so, and trying every turn and
+                // shrink there spent the holes' budget before the rest of the surface was reached).
+                if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) return false;
                 if (!is_ring_source(j) && off_size(*embedded, j, local)) continue;
                 if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
                 if (!is_ring_source(j) && !keeps_clearance_3d(*embedded, local)) continue;
