@@ -62,7 +62,8 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_EQ(count(sa.substr(at), "\nf "), 634);
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
-    for (const char* key : {"region_density_min", "region_density_max", "base_faces", "symmetry"}) EXPECT_TRUE(j.at("surface").contains(key)) << key;
+    for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "base_faces", "symmetry"})
+        EXPECT_TRUE(j.at("surface").contains(key)) << key;
     // A point of the base in the thinnest region: on the eight's surface (its centre, or an unset
     // origin, is not).
     const auto& at_json = j.at("surface").at("region_density_min_at");
@@ -72,10 +73,11 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_LT(meshquilt::TriangleIndex(eight).closest(thinnest).distance, 1e-9 * meshquilt::bounding_box(eight).size().norm()) << thinnest.transpose();
     EXPECT_GT(meshquilt::TriangleIndex(eight).closest(meshquilt::Vec3::Zero()).distance, 0.01);
     // The closing line gives the regions' densities and the thinnest one's place, as the report has them.
-    char summary[200];
+    char summary[300];
     const auto& sj = j.at("surface");
-    std::snprintf(summary, sizeof summary, "regions at %.3g-%.3g of the swatch's density (thinnest around %.4g, %.4g, %.4g) -> ",
-                  sj.at("region_density_min").get<double>(), sj.at("region_density_max").get<double>(), sj.at("region_density_min_at")[0].get<double>(),
+    std::snprintf(summary, sizeof summary, "regions at %.3g-%.3g of the swatch's density (%.3g-%.3g on the shell's middle surface; thinnest around %.4g, %.4g, %.4g) -> ",
+                  sj.at("region_density_min").get<double>(), sj.at("region_density_max").get<double>(), sj.at("region_density_mid_min").get<double>(),
+                  sj.at("region_density_mid_max").get<double>(), sj.at("region_density_min_at")[0].get<double>(),
                   sj.at("region_density_min_at")[1].get<double>(), sj.at("region_density_min_at")[2].get<double>());
     EXPECT_NE(first.err.find(summary), std::string::npos) << first.err;
     // The scale given is the scale used, and the output file's header records it.

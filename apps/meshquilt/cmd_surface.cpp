@@ -114,7 +114,9 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         if (!global_flags().quiet)
             std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces"
                       << (r.surface.regions > 0 ? ", regions at " + num(r.surface.region_density_min, 3) + "-" + num(r.surface.region_density_max, 3) +
-                                                      " of the swatch's density (thinnest around " + num(r.surface.region_density_min_at.x(), 4) +
+                                                      " of the swatch's density (" + num(r.surface.region_density_mid_min, 3) + "-" +
+                                                      num(r.surface.region_density_mid_max, 3) + " on the shell's middle surface; thinnest around " +
+                                                      num(r.surface.region_density_min_at.x(), 4) +
                                                       ", " + num(r.surface.region_density_min_at.y(), 4) + ", " +
                                                       num(r.surface.region_density_min_at.z(), 4) + ")"
                                                 : std::string())

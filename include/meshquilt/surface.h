@@ -117,6 +117,12 @@ struct SurfaceQualityReport {
     /// footprints, divided by the swatch's: smallest and largest over regions.
     double region_density_min = 0.0;
     double region_density_max = 0.0;
+    /// The same per area of the shell's middle surface (the base's faces mapped at half the
+    /// shell's height), where the elements' middles lie: a decoration round a thin part stands on
+    /// a wider surface than its base (the swatch's density is measured in the plane, where the two
+    /// are one), and one in a hollow on a narrower.
+    double region_density_mid_min = 0.0;
+    double region_density_mid_max = 0.0;
     /// A point of the base near the middle of the thinnest region (the centroid of its face closest
     /// to the region's area-weighted centre): where to look first when the decoration is sparse.
     Vec3 region_density_min_at = Vec3::Zero();

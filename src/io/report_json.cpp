@@ -119,6 +119,8 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"base_units_per_swatch_unit", s.base_scale},
                         {"region_density_min", s.region_density_min},
                         {"region_density_max", s.region_density_max},
+                        {"region_density_mid_min", s.region_density_mid_min},
+                        {"region_density_mid_max", s.region_density_mid_max},
                         {"region_density_min_at", {s.region_density_min_at.x(), s.region_density_min_at.y(), s.region_density_min_at.z()}},
                         {"regions", s.regions},
                         {"base_flipped_components", s.base_flipped_components},

@@ -3118,11 +3118,32 @@ private:
         return out;
     }
 
+    /// Each base face's area on the shell's middle surface, where the elements' middles lie: its
+    /// corners mapped at half the shell's height (along the normals with --embed normal).
+    std::vector<double> middle_areas() const {
+        std::vector<double> mid(base_.mesh.faces.size(), 0.0);
+        tbb::parallel_for(std::size_t{0}, base_.mesh.faces.size(), [&](std::size_t f) {
+            std::array<Vec3, 3> p;
+            for (int k = 0; k < 3; ++k) {
+                SurfacePoint sp;
+                sp.face = static_cast<int>(f);
+                sp.bary = Vec3::Unit(k);
+                sp.height = 0.5 * surface_.shell_height;
+                p[static_cast<std::size_t>(k)] = embed(sp);
+            }
+            const double a = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+            mid[f] = std::isfinite(a) ? a : base_.area[f];
+        });
+        return mid;
+    }
+
     /// Density per region: the base split into regions of about 4 footprints (farthest-point
     /// centres on face centroids, faces to the nearest centre); element faces count where they are
     /// anchored. A strip along the base's boundary half the largest element wide, which elements
     /// (whole, and on the base) cannot fill, is left out, as the tests' measure leaves it out. Regions
     /// with less than one footprint of area (small components, slivers at borders) are left out.
+    /// Each region's element area is taken over its base area and over its area on the shell's
+    /// middle surface (middle_areas).
     void region_density(const SurfaceQuiltResult& result) {
         const std::size_t F = base_.mesh.faces.size();
         const std::vector<char> strip = near_boundary(0.5 * element_diag_ * scale_);
@@ -3143,11 +3164,14 @@ private:
             }
             if (r + 1 < regions) centres.push_back(base_.centroid[far]);
         }
-        std::vector<double> base_area(static_cast<std::size_t>(regions), 0.0), elem_area(static_cast<std::size_t>(regions), 0.0);
+        std::vector<double> base_area(static_cast<std::size_t>(regions), 0.0), elem_area(static_cast<std::size_t>(regions), 0.0),
+            mid_area(static_cast<std::size_t>(regions), 0.0);
         std::vector<Vec3> middle(static_cast<std::size_t>(regions), Vec3::Zero());
+        const std::vector<double> mid = middle_areas();
         for (std::size_t f = 0; f < F; ++f)
             if (!strip[f]) {
                 base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
+                mid_area[static_cast<std::size_t>(region[f])] += mid[f];
                 middle[static_cast<std::size_t>(region[f])] += base_.area[f] * base_.centroid[f];
             }
         for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
@@ -3155,19 +3179,25 @@ private:
             if (strip[static_cast<std::size_t>(bf)]) continue;
             elem_area[static_cast<std::size_t>(region[static_cast<std::size_t>(bf)])] += face_area(result.mesh, f);
         }
-        double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+        double lo = std::numeric_limits<double>::infinity(), hi = 0.0, mid_lo = lo, mid_hi = 0.0;
         int counted = 0, thinnest = -1;
         for (int r = 0; r < regions; ++r) {
-            if (base_area[static_cast<std::size_t>(r)] < fp_area) continue;
-            const double ratio = elem_area[static_cast<std::size_t>(r)] / base_area[static_cast<std::size_t>(r)] / std::max(surface_.swatch_density, 1e-300);
+            const auto k = static_cast<std::size_t>(r);
+            if (base_area[k] < fp_area) continue;
+            const double ratio = elem_area[k] / base_area[k] / std::max(surface_.swatch_density, 1e-300);
             if (ratio < lo) thinnest = r;
             lo = std::min(lo, ratio);
             hi = std::max(hi, ratio);
+            const double mid_ratio = elem_area[k] / std::max(mid_area[k], 1e-300) / std::max(surface_.swatch_density, 1e-300);
+            mid_lo = std::min(mid_lo, mid_ratio);
+            mid_hi = std::max(mid_hi, mid_ratio);
             ++counted;
         }
         surface_.regions = counted;
         surface_.region_density_min = counted ? lo : 0.0;
         surface_.region_density_max = counted ? hi : 0.0;
+        surface_.region_density_mid_min = counted ? mid_lo : 0.0;
+        surface_.region_density_mid_max = counted ? mid_hi : 0.0;
         if (thinnest >= 0) {
             const Vec3 centre = middle[static_cast<std::size_t>(thinnest)] / base_area[static_cast<std::size_t>(thinnest)];
             double best = std::numeric_limits<double>::infinity();
