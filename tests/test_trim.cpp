@@ -195,6 +195,28 @@ TEST(ThreadPieces, ABentThreadCutAcrossBothLegsGivesTwoPieces) {
     EXPECT_NEAR(std::abs(y[0] - y[1]), 2.0, 0.1);  // one piece per leg
 }
 
+// A thread that passes through itself (here a thread along x and a second closed tube across it, in
+// one mesh) is outside CGAL's clip precondition: its corefinement once crashed (a Truchet knot on a
+// genus-16 plate). It gives no pieces, even where the part to keep is clean, and never crashes.
+TEST(ThreadPieces, AThreadThatIntersectsItselfGivesNoPieces) {
+    Mesh m = thread(10.0, 41);
+    std::vector<Vec3> centre, across;
+    for (int r = 0; r <= 20; ++r) centre.emplace_back(5.0, -2.0 + 0.2 * r, 0.2), across.emplace_back(1, 0, 0);
+    const Mesh cross = sweep(centre, across, 0.3, 0.1, true);
+    const int base = static_cast<int>(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), cross.vertices.begin(), cross.vertices.end());
+    for (const Tri& t : cross.faces) m.faces.emplace_back(t[0] + base, t[1] + base, t[2] + base);
+    ASSERT_TRUE(quilt::is_closed_oriented(m));
+    ASSERT_GT(mq::count_self_intersections(m), 0);
+    std::vector<char> bad(m.faces.size(), 0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)  // the thread's first two units
+        for (int k = 0; k < 3; ++k) bad[f] = static_cast<char>(bad[f] | (m.vertices[m.faces[f][k]].x() < 2.0));
+    EXPECT_TRUE(quilt::thread_pieces(m, bad, {0.2, 1.0}).empty());
+    // The same cut of the thread alone keeps the rest, so the flags leave a piece to keep.
+    const Mesh alone = thread(10.0, 41);
+    EXPECT_EQ(quilt::thread_pieces(alone, std::vector<char>(bad.begin(), bad.begin() + static_cast<std::ptrdiff_t>(alone.faces.size())), {0.2, 1.0}).size(), 1U);
+}
+
 }  // namespace
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/clip.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -37,6 +38,10 @@ bool clip_span(const Mesh& m, int axis, double lo, double hi, std::vector<Mesh>*
         if (sm.add_face(SM::Vertex_index(static_cast<SM::size_type>(t[0])), SM::Vertex_index(static_cast<SM::size_type>(t[1])),
                         SM::Vertex_index(static_cast<SM::size_type>(t[2]))) == SM::null_face())
             return false;
+    // Clipping a mesh that intersects itself (or has degenerate faces, which CGAL counts so) is
+    // outside PMP::clip's precondition, and its corefinement then crashed in the constrained
+    // triangulation of a cut face (a Truchet knot's part on a genus-16 plate), not throwing.
+    if (PMP::does_self_intersect(sm)) return false;
     const Box3 box = bounding_box(m);
     const Vec3 pad = Vec3::Constant(1.0 + box.size().maxCoeff());
     Vec3 a = box.min - pad, b = box.max + pad;

@@ -24,8 +24,8 @@ struct ThreadCut {
 /// the nearest vertices, so no sliver faces) and capped flat (CGAL::Polygon_mesh_processing::clip
 /// with clip_volume). A span that cuts a bent thread into several parts gives each as a piece.
 /// Pieces that do not come out closed, oriented and free of self-intersections, or whose longer
-/// side in xy is below `cut.min_length`, are left out. Without any flagged face the result is `m`
-/// itself.
+/// side in xy is below `cut.min_length`, are left out; a thread that intersects itself (outside
+/// the clip's precondition) gives none. Without any flagged face the result is `m` itself.
 std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut);
 
 /// The longest span along the axis of thread `m` that its faces flagged in `bad`, widened by
