@@ -398,16 +398,14 @@ TEST(ShellMap, SlotNoElementInBaseWhereNormalDisplacementCuts) {
 
 namespace {
 
-/// An element's diameter (double sweep: the farthest vertex from the farthest vertex from any).
+/// An element's diameter: the largest distance between two of its vertices. (A double sweep, the
+/// farthest vertex from the farthest vertex from any, is only a lower bound: on a tilted ring mended
+/// in the comb below it read 0.66 of the swatch ring's width where the ring spans 0.83.)
 double diameter(const Mesh& m) {
-    auto farthest = [&](const Vec3& from) {
-        const Vec3* best = &m.vertices.front();
-        for (const Vec3& v : m.vertices)
-            if ((v - from).squaredNorm() > (*best - from).squaredNorm()) best = &v;
-        return *best;
-    };
-    const Vec3 a = farthest(m.vertices.front());
-    return (farthest(a) - a).norm();
+    double d = 0.0;
+    for (std::size_t a = 0; a < m.vertices.size(); ++a)
+        for (std::size_t b = a + 1; b < m.vertices.size(); ++b) d = std::max(d, (m.vertices[a] - m.vertices[b]).squaredNorm());
+    return std::sqrt(d);
 }
 
 double area_of(const Mesh& m) {

@@ -113,6 +113,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"elements_nudged", s.elements_nudged},
                         {"elements_mended", s.elements_mended},
                         {"ring_holes_filled", s.ring_holes_filled},
+                        {"ring_holes_tilted", s.ring_holes_tilted},
                         {"rings_unlinked_removed", s.rings_unlinked_removed},
                         {"symmetry", s.symmetry},
                         {"scale", s.scale},

@@ -85,6 +85,18 @@ constexpr std::array<double, 2> kHoleShifts{0.2, 0.4};
 /// ... turned by up to this much either way (radians) in this many steps each side.
 constexpr double kHoleTurn = 0.3;
 constexpr int kHoleTurnSteps = 3;
+/// ... and, when no pose of the swatch's ring fits, tilted by this much (radians) either way about
+/// the swatch's x and y axes (ring_variant: kHoleVariants poses in all, the untilted first, each
+/// lifted so it stays above the base). A ring between two lattices that meet at an angle sits
+/// between their tilts. Tilted tries have their own budget (tilt_budget), kHoleTiltFree per ring
+/// standing and kHoleTriesPerRing per tilted ring put in: on the armadillo, where few fit, they
+/// stop early. A tilted ring, like every mended one, must keep kMendMinWidth of its swatch ring's
+/// diameter once embedded (the shell flattens a ring that rises far above the slab), and a thinned
+/// swatch (a tight mail) tries none: its tilted rings stood closer to their neighbours and were
+/// thickened back less (0.69 of their size, and a region at 1.156 on the eight).
+constexpr double kHoleTilt = 0.15;
+constexpr int kHoleVariants = 5;
+constexpr double kHoleTiltFree = 1.0;
 /// A try with this many vertices inside a standing ring's solid, or of the ring's vertices in
 /// the try's (SolidGrid: a swatch element's, kSolidCells along its longest side), is refused
 /// before it is embedded ...
@@ -107,6 +119,8 @@ constexpr double kHoleTriesFree = 4.0;
 constexpr long kHoleTriesPerRing = 200;
 /// A mended ring keeps at least this share of its swatch element's size (square root of area).
 constexpr double kMendMinSize = 0.75;
+/// ... and this much of its swatch ring's diameter (mend_slot).
+constexpr double kMendMinWidth = 0.75;
 /// An element the patch places keeps at least this share of its swatch element's size (the square
 /// root of the area, a lowered shell's flattening included): the stage promises a factor 1.5
 /// (0.667), and 0.7 leaves a margin.
@@ -2026,6 +2040,8 @@ private:
         hole_tries_ = 0;
         hole_budget_ = static_cast<long>(kHoleBudget * standing);
         hole_free_ = std::max(1000L, static_cast<long>(kHoleTriesFree * standing));
+        tilt_tries_ = 0;
+        tilt_free_ = std::max(1000L, static_cast<long>(kHoleTiltFree * standing));
         mend_cell_ = std::max(spacing * scale_ * *std::max_element(local_scale_.begin(), local_scale_.end()), 1e-12);
         tile_frames(R, kMendPasses, "mending", [&](const Frame& fr) { mend_frame(fr.flat, fr.local, R, lattice); });
     }
@@ -2289,10 +2305,9 @@ private:
             std::vector<std::size_t> blocking;
             for (std::size_t k = 0; k < standing.size(); ++k)
                 if ((standing[k].centre - h).norm() <= kHoleReach * unit) blocking.push_back(k);
-            const Clash clash = [&](const Mesh& cand, int j, const Eigen::Matrix2d& M, const Vec2& b) {
+            const Clash clash = [&](const Mesh& cand, const quilt::SolidGrid& mine, const Eigen::Matrix2d& M, const Vec2& b) {
                 const Eigen::Matrix2d Minv = M.inverse();
                 if (!Minv.allFinite()) return true;
-                const quilt::SolidGrid& mine = solid_of(j);
                 Vec3 lo = cand.vertices.front(), hi = lo;
                 for (const Vec3& v : cand.vertices) {
                     lo = lo.cwiseMin(v);
@@ -2352,7 +2367,7 @@ private:
                     bool lasting = true;
                     Pose placed;
                     if (mend_slot(flat, locator, hs, local, moved, offer.slot->source, offer.slot->shift, hc, around, anchors, embedded, &placed, &lasting, &turns,
-                                  &clash, &fit)) {
+                                  &clash, &fit, sw_.thinned > 0.0 ? 1 : kHoleVariants)) {
                         filled.push_back(hc);
                         filled_id.push_back(static_cast<int>(elems_.size()) - 1);
                         ++surface_.ring_holes_filled;
@@ -2370,15 +2385,52 @@ private:
     }
 
     /// A quick test of a ring's try in a mending frame (fill_ring_holes): its mesh in the frame,
-    /// its swatch element and the map M v + b of that element's xy onto the frame.
-    using Clash = std::function<bool(const Mesh&, int, const Eigen::Matrix2d&, const Vec2&)>;
+    /// the solid of the swatch ring it was made from and the map M v + b of that ring's xy onto
+    /// the frame.
+    using Clash = std::function<bool(const Mesh&, const quilt::SolidGrid&, const Eigen::Matrix2d&, const Vec2&)>;
 
-    /// The solid of swatch element `s` (built on first use).
-    const quilt::SolidGrid& solid_of(int s) {
-        if (solid_.size() != sw_.elements.size()) solid_.assign(sw_.elements.size(), {});
-        auto& g = solid_[static_cast<std::size_t>(s)];
-        if (g.empty()) g = quilt::SolidGrid(sw_.elements[static_cast<std::size_t>(s)], kSolidCells);
-        return g;
+    /// Swatch ring `s` as fill_ring_holes may tilt it: variant 0 as it is, 1-4 turned by kHoleTilt
+    /// either way about the swatch's x and y axes through its area centroid, and lifted so that its
+    /// lowest point stays where it was; empty where it then rises above the swatch (built on first
+    /// use).
+    const Mesh& ring_variant(int s, int variant) {
+        if (variant == 0) return sw_.elements[static_cast<std::size_t>(s)];
+        auto it = variant_.find({s, variant});
+        if (it != variant_.end()) return it->second;
+        const Mesh& src = sw_.elements[static_cast<std::size_t>(s)];
+        const Vec3 c = area_centroid(src);
+        const double angle = (variant % 2 == 1 ? 1.0 : -1.0) * kHoleTilt;
+        const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, variant <= 2 ? Vec3::UnitX() : Vec3::UnitY()).toRotationMatrix();
+        Mesh m = src;
+        double lo = std::numeric_limits<double>::infinity(), lo0 = lo;
+        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+            lo0 = std::min(lo0, src.vertices[v].z());
+            m.vertices[v] = R * (src.vertices[v] - c) + c;
+            lo = std::min(lo, m.vertices[v].z());
+        }
+        double hi = -std::numeric_limits<double>::infinity();
+        for (Vec3& v : m.vertices) {
+            v.z() += lo0 - lo;
+            hi = std::max(hi, v.z());
+        }
+        // Tilted steeper than the swatch's slab allows, the shell would squash it in height (its
+        // diameter too, for a steep ring): left out (no faces).
+        return variant_.emplace(std::make_pair(s, variant), std::move(m)).first->second;
+    }
+
+    /// The largest distance between two of `m`'s vertices.
+    static double vertex_diameter(const Mesh& m) {
+        double d = 0.0;
+        for (std::size_t a = 0; a < m.vertices.size(); ++a)
+            for (std::size_t b = a + 1; b < m.vertices.size(); ++b) d = std::max(d, (m.vertices[a] - m.vertices[b]).squaredNorm());
+        return std::sqrt(d);
+    }
+
+    /// The solid of swatch ring `s`'s variant (ring_variant; built on first use).
+    const quilt::SolidGrid& solid_of(int s, int variant = 0) {
+        auto it = variant_solid_.find({s, variant});
+        if (it != variant_solid_.end()) return it->second;
+        return variant_solid_.emplace(std::make_pair(s, variant), quilt::SolidGrid(ring_variant(s, variant), kSolidCells)).first->second;
     }
 
     /// Tries fill_ring_holes may still embed: kHoleBudget per ring standing when mending started,
@@ -2387,6 +2439,12 @@ private:
     /// fit, tries stop early).
     long hole_budget() const {
         return std::min(hole_budget_, hole_free_ + kHoleTriesPerRing * static_cast<long>(surface_.ring_holes_filled));
+    }
+    /// ... and tilted tries (ring_variant) apart from those: kHoleTiltFree per ring standing (at
+    /// least 1,000) and kHoleTriesPerRing for each tilted ring put in, so that where tilting rarely
+    /// helps it stops early and does not spend the untilted tries' budget.
+    long tilt_budget() const {
+        return std::min(hole_budget_, tilt_free_ + kHoleTriesPerRing * static_cast<long>(surface_.ring_holes_tilted));
     }
 
     /// Was a hole tried in vain within `tolerance` of `at`?
@@ -2446,79 +2504,96 @@ private:
     /// 0.85 of its size (a ring between two lattices that meet at an angle often fits only a little
     /// smaller; each shrink of the 38 rings mended on the eight, 15 were smaller). The first pose
     /// that lies on the patch, collides with nothing and does not fold is added. fill_ring_holes
-    /// passes its own `turns`, a quick `clash` test that refuses a pose before it is embedded, and
-    /// `fit_io`, the map's scale for the ring's size, found once per hole (0: not yet).
+    /// passes its own `turns`, a quick `clash` test that refuses a pose before it is embedded,
+    /// `fit_io`, the map's scale for the ring's size, found once per hole (0: not yet), and
+    /// `variants`: the ring's tilted variants (ring_variant) tried in turn after it, each in every
+    /// pose.
     bool mend_slot(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, const Pose& pose, int j,
                    const Vec2& shift, const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed,
-                   bool* lasting, const std::vector<double>* turns = nullptr, const Clash* clash = nullptr, double* fit_io = nullptr) {
+                   bool* lasting, const std::vector<double>* turns = nullptr, const Clash* clash = nullptr, double* fit_io = nullptr,
+                   int variants = 1) {
         static const std::vector<double> kTurns{0.0, 0.05, -0.05, 0.1, -0.1};
         *lasting = true;  // every pose collided or folded: more rings will not change that
-        const Mesh& src = sw_.elements[static_cast<std::size_t>(j)];
-        const double want = std::max(mesh_area(src) * scale_ * scale_ * local * local, 1e-300);
-        const Vec3 src_centroid = area_centroid(src);
+        const double want = std::max(mesh_area(sw_.elements[static_cast<std::size_t>(j)]) * scale_ * scale_ * local * local, 1e-300);
         double fit = fit_io ? *fit_io : 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
-        for (const double shrink : {1.0, 0.92, 0.85})
-            for (const double turn : turns ? *turns : kTurns) {
-                Eigen::Matrix2d T;
-                T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
-                Mesh m = src;
-                // m = M v + b for the swatch ring's vertices v (xy), resized by f about its area
-                // centroid as resized_in_frame does.
-                const Eigen::Matrix2d M0 = T * pose.A;
-                const Vec2 b0 = T * (pose.A * shift + pose.t - c) + c;
-                Eigen::Matrix2d M;
-                Vec2 b;
-                auto pose_at = [&](double f) {
-                    M = f * M0;
-                    b = f * b0 + (1.0 - f) * (M0 * src_centroid.head<2>() + b0);
-                    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-                        const Vec2 q = M * src.vertices[v].head<2>() + b;
-                        m.vertices[v] = Vec3(q.x(), q.y(), src.vertices[v].z());
+        for (int variant = 0; variant < variants; ++variant) {
+            const Mesh& src = ring_variant(j, variant);
+            if (src.faces.empty()) continue;
+            const Vec3 src_centroid = area_centroid(src);
+            const double src_diameter = vertex_diameter(src);
+            const quilt::SolidGrid* mine = clash ? &solid_of(j, variant) : nullptr;
+            for (const double shrink : {1.0, 0.92, 0.85})
+                for (const double turn : turns ? *turns : kTurns) {
+                    Eigen::Matrix2d T;
+                    T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
+                    Mesh m = src;
+                    // m = M v + b for the swatch ring's vertices v (xy), resized by f about its area
+                    // centroid as resized_in_frame does.
+                    const Eigen::Matrix2d M0 = T * pose.A;
+                    const Vec2 b0 = T * (pose.A * shift + pose.t - c) + c;
+                    Eigen::Matrix2d M;
+                    Vec2 b;
+                    auto pose_at = [&](double f) {
+                        M = f * M0;
+                        b = f * b0 + (1.0 - f) * (M0 * src_centroid.head<2>() + b0);
+                        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+                            const Vec2 q = M * src.vertices[v].head<2>() + b;
+                            m.vertices[v] = Vec3(q.x(), q.y(), src.vertices[v].z());
+                        }
+                    };
+                    if (clash) {
+                        // Tested quickly first, at the swatch size while the map's scale here is not
+                        // known yet (embed_sized changes it only beyond kLatticeSizeDrift).
+                        pose_at((fit > 0.0 ? fit : 1.0) * shrink);
+                        if ((*clash)(m, *mine, M, b)) continue;
                     }
-                };
-                if (clash) {
-                    // Tested quickly first, at the swatch size while the map's scale here is not
-                    // known yet (embed_sized changes it only beyond kLatticeSizeDrift).
-                    pose_at((fit > 0.0 ? fit : 1.0) * shrink);
-                    if ((*clash)(m, j, M, b)) continue;
-                }
-                if (clash && ++hole_tries_ > hole_budget()) return false;  // fill_ring_holes stops
-                if (fit == 0.0) {
-                    pose_at(1.0);
-                    if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) {
-                        *lasting = false;  // off this patch: another frame may hold it
-                        return false;
+                    if (clash && variant == 0 && ++hole_tries_ > hole_budget()) return false;  // fill_ring_holes stops
+                    if (clash && variant > 0 && ++tilt_tries_ > tilt_budget()) return false;  // no more tilted tries
+                    if (fit == 0.0) {
+                        pose_at(1.0);
+                        if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) {
+                            *lasting = false;  // off this patch: another frame may hold it
+                            return false;
+                        }
+                        if (fit_io) *fit_io = fit;
+                        if (clash && fit != 1.0) {
+                            pose_at(fit * shrink);
+                            if ((*clash)(m, *mine, M, b)) continue;
+                        }
                     }
-                    if (fit_io) *fit_io = fit;
-                    if (clash && fit != 1.0) {
-                        pose_at(fit * shrink);
-                        if ((*clash)(m, j, M, b)) continue;
+                    pose_at(fit * shrink);
+                    if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, anchors, embedded)) {
+                        *lasting = false;
+                        continue;
                     }
+                    // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its
+                    // swatch element's size (the square root of the area; the stage promises 1.5).
+                    // Turned it keeps its size, and shrunk further it only loses more: the slot is given
+                    // up (where the shell is lowered most holes fail so, and trying every turn and
+                    // shrink there spent the holes' budget before the rest of the surface was reached).
+                    if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) return false;
+                    // Its width too: squashed by a lowered shell a ring can keep its area and lose
+                    // its diameter (a steep ring, or one tilted to rise above the slab). It keeps
+                    // kMendMinWidth of its swatch ring's diameter.
+                    if (vertex_diameter(*embedded) < kMendMinWidth * src_diameter * scale_ * local) {
+                        if (variant == 0) return false;
+                        continue;
+                    }
+                    if (!is_ring_source(j) && off_size(*embedded, j, local)) continue;
+                    if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
+                    if (!is_ring_source(j) && !keeps_clearance_3d(*embedded, local)) continue;
+                    if (interlocked_ && links_with(*embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
+                        *lasting = false;  // a ring mended later may give it a link
+                        continue;
+                    }
+                    add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
+                    ++surface_.elements_mended;  // ring_holes_filled counts the hole fillers among them
+                    if (variant > 0) ++surface_.ring_holes_tilted;
+                    // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
+                    *placed = {j, T * pose.A, T * (pose.A * shift + pose.t - c) + c, 0.0};
+                    return true;
                 }
-                pose_at(fit * shrink);
-                if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, anchors, embedded)) {
-                    *lasting = false;
-                    continue;
-                }
-                // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its
-                // swatch element's size (the square root of the area; the stage promises 1.5).
-                // Turned it keeps its size, and shrunk further it only loses more: the slot is given
-                // up (where the shell is lowered most holes fail so, and trying every turn and
-                // shrink there spent the holes' budget before the rest of the surface was reached).
-                if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) return false;
-                if (!is_ring_source(j) && off_size(*embedded, j, local)) continue;
-                if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
-                if (!is_ring_source(j) && !keeps_clearance_3d(*embedded, local)) continue;
-                if (interlocked_ && links_with(*embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
-                    *lasting = false;  // a ring mended later may give it a link
-                    continue;
-                }
-                add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
-                ++surface_.elements_mended;  // ring_holes_filled counts the hole fillers among them
-                // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
-                *placed = {j, T * pose.A, T * (pose.A * shift + pose.t - c) + c, 0.0};
-                return true;
-            }
+        }
         return false;
     }
 
@@ -3248,8 +3323,10 @@ private:
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
     std::vector<std::pair<Vec3, Vec3>> mend_failed_;  ///< slots tried in vain (mend_frame): base point, direction
     std::map<std::array<long, 3>, std::vector<std::size_t>> mend_failed_grid_;
-    std::vector<quilt::SolidGrid> solid_;  ///< swatch elements' solids (solid_of)
+    std::map<std::pair<int, int>, Mesh> variant_;                   ///< ring_variant
+    std::map<std::pair<int, int>, quilt::SolidGrid> variant_solid_;  ///< solid_of
     long hole_tries_ = 0, hole_budget_ = 0, hole_free_ = 0;  ///< fill_ring_holes: tries embedded, and at most (hole_budget)
+    long tilt_tries_ = 0, tilt_free_ = 0;  ///< tilted tries embedded, and at most (tilt_budget)
     std::vector<Vec3> hole_failed_;  ///< ring holes tried in vain (fill_ring_holes): base points
     std::map<std::array<long, 3>, std::vector<std::size_t>> hole_failed_grid_;
     double mend_cell_ = 1.0;
