@@ -444,13 +444,57 @@ TEST(Validate, DuplicateVerticesWarnOrAreMerged) {
     EXPECT_EQ(analyse(r.mesh).closed_elements(), 1);
 }
 
-TEST(Validate, NonManifoldEdgesAndVerticesAreErrorsEvenWithRepair) {
+TEST(Validate, NonManifoldEdgesAreErrorsEvenWithRepair) {
     const Mesh edge = shapes::voxels({{0, 0, 0}, {1, 1, 0}});
     EXPECT_TRUE(rejects(edge, {"m.obj: 1 non-manifold edge (first between vertices", "shared by 4 faces"}, true));
+    // Non-manifold edges are reported before non-manifold vertices, and the vertices' repair does
+    // not hide them.
     const Mesh vertex = shapes::voxels({{0, 0, 0}, {1, 1, 1}});
-    EXPECT_TRUE(rejects(vertex, {"m.obj: 1 non-manifold vertex (first: vertex", "where 2 separate fans of faces meet"}, true));
-    // Non-manifold edges are reported before non-manifold vertices.
     EXPECT_TRUE(rejects(shapes::concat(vertex, shapes::translated(edge, Vec3(9, 0, 0))), {"non-manifold edge"}));
+    EXPECT_TRUE(rejects(shapes::concat(vertex, shapes::translated(edge, Vec3(9, 0, 0))), {"non-manifold edge"}, true));
+}
+
+// Two cubes touching at a corner: an error naming the vertex, or with repair one vertex per fan, the
+// faces and positions unchanged, and two closed cubes.
+TEST(Validate, NonManifoldVerticesFailOrAreSplit) {
+    const Mesh vertex = shapes::voxels({{0, 0, 0}, {1, 1, 1}});
+    EXPECT_TRUE(rejects(vertex, {"m.obj: 1 non-manifold vertex (first: vertex", "where 2 separate fans of faces meet",
+                                 "pass --repair to split"}));
+    ValidationOptions o;
+    o.repair = true;
+    const ValidationResult r = validate(vertex, "m.obj", o);
+    ASSERT_EQ(r.repairs.size(), 1U) << joined(r.repairs);
+    EXPECT_TRUE(contains(r.repairs, "m.obj: split 1 non-manifold vertex (first: vertex")) << joined(r.repairs);
+    EXPECT_TRUE(contains(r.repairs, "into one vertex per fan (1 vertex added)")) << joined(r.repairs);
+    ASSERT_EQ(r.mesh.num_faces(), vertex.num_faces());
+    EXPECT_EQ(r.mesh.num_vertices(), vertex.num_vertices() + 1);
+    for (std::size_t f = 0; f < vertex.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(r.mesh.vertices[r.mesh.faces[f][k]], vertex.vertices[vertex.faces[f][k]]);
+    const MeshAnalysis a = analyse(r.mesh);
+    EXPECT_EQ(a.non_manifold_vertices, 0);
+    EXPECT_EQ(a.closed_elements(), 2);
+    // The copy sits where the vertex was: the one problem left is that duplicate, which a second
+    // validation only warns about.
+    EXPECT_EQ(a.problems, std::vector<std::string>{"1 duplicate vertex (first: vertex 15 is at the position of vertex 6)"});
+    EXPECT_TRUE(validate(r.mesh, "m.obj").repairs.empty());
+    Mesh again = r.mesh;
+    EXPECT_EQ(split_non_manifold_vertices(again), 0);  // nothing left to split
+    EXPECT_EQ(again.vertices, r.mesh.vertices);
+
+    // A bow tie of three fans at one vertex (three triangles sharing only their apex): two copies.
+    Mesh fans;
+    fans.vertices = {Vec3(0, 0, 0)};
+    for (int i = 0; i < 3; ++i) {
+        const double a0 = 2.1 * i, a1 = a0 + 0.5;
+        fans.vertices.emplace_back(std::cos(a0), std::sin(a0), 0.0);
+        fans.vertices.emplace_back(std::cos(a1), std::sin(a1), 0.0);
+        fans.faces.emplace_back(0, 2 * i + 1, 2 * i + 2);
+    }
+    const ValidationResult b = validate(fans, "fans.obj", o);
+    EXPECT_TRUE(contains(b.repairs, "fans.obj: split 1 non-manifold vertex (first: vertex 0, where 3 separate fans of faces meet) into one vertex per fan (2 vertices added)"))
+        << joined(b.repairs);
+    EXPECT_EQ(analyse(b.mesh).non_manifold_vertices, 0);
+    EXPECT_EQ(b.mesh.num_vertices(), 9u);
 }
 
 TEST(Validate, InconsistentOrientationFailsOrIsRepaired) {

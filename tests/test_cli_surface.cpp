@@ -121,6 +121,13 @@ TEST_F(CliSurface, BadInputsExitTwoNameTheFileAndWriteNothing) {
     EXPECT_EQ(o.code, 2);
     EXPECT_NE(o.err.find("fin.obj"), std::string::npos) << o.err;
     EXPECT_NE(o.err.find("non-manifold"), std::string::npos) << o.err;
+    // A bow tie (two triangles sharing only a vertex): --repair would split the vertex.
+    const fs::path bow = dir / "bowtie.obj";
+    std::ofstream(bow) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\nf 1 2 3\nf 1 4 5\n";
+    o = run(bow.string() + " " + swatch + " -o " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find("bowtie.obj: 1 non-manifold vertex (first: vertex 0"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("pass --repair to split"), std::string::npos) << o.err;
     // Empty base file.
     const fs::path empty = dir / "empty.obj";
     std::ofstream(empty) << "# nothing\n";

@@ -424,6 +424,36 @@ TEST(Surface, SeveralComponentsAreAllCovered) {
     EXPECT_GT(near_large, 10);
 }
 
+// Two spheres touching at one vertex (a base with a non-manifold vertex, as an STL soup or a base
+// that --repair split welds back into): the vertex is split again on the synthesis's copy, with a
+// warning, and both spheres are covered with whole, disjoint elements.
+TEST(Surface, SpheresTouchingAtAVertexAreBothCovered) {
+    const Mesh a = isect::icosphere(1.0, 3);
+    const Vec3 touch = a.vertices[0];
+    Mesh b = a;  // a reflected through the vertex: b's vertex 0 lands exactly on a's
+    for (Vec3& v : b.vertices) v = 2.0 * touch - v;
+    for (mq::Tri& t : b.faces) std::swap(t[1], t[2]);
+    ASSERT_EQ(b.vertices[0], touch);
+    Mesh base = shapes::concat(a, b);
+    const int b0 = static_cast<int>(a.vertices.size());
+    for (std::size_t f = a.faces.size(); f < base.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k)
+            if (base.faces[f][k] == b0) base.faces[f][k] = 0;  // b shares a's vertex
+    base.vertices[static_cast<std::size_t>(b0)] = touch + Vec3(9, 9, 9);  // left unused
+    ASSERT_EQ(mq::analyse(base).non_manifold_vertices, 1);
+    const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("rivets")), 0.2);
+    expect_whole_and_disjoint(run);
+    EXPECT_EQ(run.r.surface.base_faces_processed, run.r.surface.base_faces);
+    EXPECT_EQ(std::count_if(run.r.warnings.begin(), run.r.warnings.end(),
+                            [](const std::string& w) { return w.find("touches itself at 1 non-manifold vertex (separate fans") != std::string::npos; }),
+              1);
+    int on_a = 0, on_b = 0;
+    for (const auto& e : mq::test::split_elements(run.r.mesh, run.r.element_of_face))
+        (element_centroid(e).dot(touch) < touch.squaredNorm() ? on_a : on_b)++;
+    EXPECT_GT(on_a, 10);
+    EXPECT_GT(on_b, 10);
+}
+
 /// The output's rings and how many others each interlocks with (|linking number| 1, pairs within
 /// 1.5 of the swatch's widest ring at the run's scale); `diameter` gets that width.
 struct RingLinks {

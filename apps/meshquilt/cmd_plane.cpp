@@ -36,7 +36,7 @@ void add_plane_command(CLI::App& root, std::vector<Command>& commands) {
     app->add_option("--report", args->report, "Write a JSON quality report here");
     app->add_option("--cell", args->cell, "Grid cell size in swatch units (default: 1/24 of the swatch's longer side)");
     app->add_option("--subpatch", args->subpatch, "Output sub-patch side in cells (default: a third of the swatch's cells)");
-    app->add_flag("--repair", args->repair, "Repair safe input problems (degenerate faces, duplicate vertices) and report them");
+    app->add_flag("--repair", args->repair, "Repair safe input problems (degenerate faces, duplicate or non-manifold vertices, orientation) and report them");
     commands.push_back({app, [args]() {
         const auto t0 = std::chrono::steady_clock::now();
         const Mesh swatch = load_input(args->swatch, args->repair, true);

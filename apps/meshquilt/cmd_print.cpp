@@ -109,7 +109,7 @@ void add_print_command(CLI::App& root, std::vector<Command>& commands) {
     app->add_option("--base", *base, "The base mesh, printed with the decoration (an open base is thickened)");
     add_print_options(app, *a, true);
     app->add_option("--report", *report, "Write a JSON report here (also when a check fails)");
-    app->add_flag("--repair", *repair, "Repair safe input problems (degenerate faces, duplicate vertices) and report them");
+    app->add_flag("--repair", *repair, "Repair safe input problems (degenerate faces, duplicate or non-manifold vertices, orientation) and report them");
     commands.push_back({app, [a, input, base, report, repair]() {
         check_print_args(*a);
         const Mesh deco = load_input(*input, *repair, false);

@@ -55,7 +55,7 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
         ->capture_default_str();
     app->add_flag("--no-shell-optimisation", a->no_optimise, "Build the shell map without its stretch optimisation");
     app->add_option("--report", a->report, "Write a JSON quality report here");
-    app->add_flag("--repair", a->repair, "Repair safe input problems (degenerate faces, duplicate vertices) and report them");
+    app->add_flag("--repair", a->repair, "Repair safe input problems (degenerate faces, duplicate or non-manifold vertices, orientation) and report them");
     auto* print_opt = app->add_option("--print", a->print.output,
                                       "Also write a printable .3mf/.stl in millimetres (fused: decoration and base as one solid; "
                                       "separate: the elements only); needs --size-mm or --unit-mm");

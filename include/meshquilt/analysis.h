@@ -65,9 +65,11 @@ struct MeshAnalysis {
 MeshAnalysis analyse(const Mesh& mesh);
 
 struct ValidationOptions {
-    /// Drop degenerate faces, merge duplicate vertices, make face orientation consistent within
-    /// each element (when it is orientable), flip inside-out closed elements, drop unreferenced
-    /// vertices; each repair is reported in ValidationResult::repairs.
+    /// Drop degenerate faces, merge duplicate vertices, split non-manifold vertices (one copy of
+    /// the vertex per fan of faces around it), make face orientation consistent within each
+    /// element (when it is orientable), flip inside-out closed elements, drop unreferenced
+    /// vertices; each repair is reported in ValidationResult::repairs. Non-manifold edges stay
+    /// errors: no repair of them is safe.
     bool repair = false;
     bool require_thin_axis = false;  ///< a swatch must have one
 };
@@ -87,5 +89,11 @@ struct ValidationResult {
 /// Not errors: duplicate vertices and inside-out closed elements (a warning each, unless repaired)
 /// and unreferenced vertices. Messages name vertices by their index in the input mesh.
 ValidationResult validate(const Mesh& mesh, const std::string& name, const ValidationOptions& options = {});
+
+/// Gives each fan of faces around a non-manifold vertex, beyond the first, a copy of the vertex of
+/// its own at the same position (the surface then touches itself there instead of sharing a
+/// vertex); faces keep their order. Returns the number of vertices added. Needs indices in range;
+/// non-manifold edges are left as they are. O(F log F).
+int split_non_manifold_vertices(Mesh& mesh);
 
 }  // namespace meshquilt

@@ -20,7 +20,8 @@ struct DecorateOptions {
     /// Scale, height, field, seed, embedding... and the Reporter for progress, cancellation and
     /// log messages (also used by the print step when its own reporter is empty).
     SurfaceQuiltOptions surface;
-    /// Make the safe repairs of validate() (degenerate faces, duplicate vertices, orientation)
+    /// Make the safe repairs of validate() (degenerate faces, duplicate or non-manifold vertices,
+    /// orientation)
     /// instead of refusing such inputs; each repair is listed in `DecorateResult::repairs`.
     bool repair = false;
     /// Names that start every message about the inputs (file paths in the CLI).

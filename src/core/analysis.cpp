@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 namespace meshquilt {
@@ -310,6 +311,10 @@ Topology compute_topology(const Mesh& mesh) {
                 for (int k = 0; k < 3; ++k)
                     corner_at[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh.faces[f][k])]++)] = static_cast<int>(3 * f) + k;
     }
+    topo.fan_of_corner.assign(3 * nf, -1);
+    for (std::size_t f = 0; f < nf; ++f)
+        if (!has_repeated_index(mesh.faces[f]))
+            for (int k = 0; k < 3; ++k) topo.fan_of_corner[3 * f + static_cast<std::size_t>(k)] = corners.find(static_cast<int>(3 * f) + k);
     std::vector<int> roots;
     for (std::size_t v = 0; v < nv; ++v) {
         roots.clear();
@@ -425,6 +430,28 @@ MeshAnalysis analyse(const Mesh& mesh) {
     a.degenerate_faces = degenerate.count;
     a.duplicate_vertices = duplicates.count;
     return a;
+}
+
+
+int split_non_manifold_vertices(Mesh& mesh) {
+    const analysis_detail::Topology topo = analysis_detail::compute_topology(mesh);
+    if (topo.non_manifold_vertices == 0) return 0;
+    const std::size_t nv = mesh.vertices.size();
+    std::vector<int> first_fan(nv, -1);
+    std::map<std::pair<int, int>, int> copy;  // (vertex, fan) -> the vertex's copy for that fan
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int fan = topo.fan_of_corner[3 * f + static_cast<std::size_t>(k)];
+            if (fan < 0) continue;
+            const auto v = static_cast<std::size_t>(mesh.faces[f][k]);
+            if (first_fan[v] < 0) first_fan[v] = fan;
+            if (first_fan[v] == fan) continue;
+            const auto [it, fresh] = copy.try_emplace({static_cast<int>(v), fan}, static_cast<int>(mesh.vertices.size()));
+            if (fresh) mesh.vertices.push_back(mesh.vertices[v]);
+            const int to = it->second;
+            mesh.faces[f][k] = to;
+        }
+    return static_cast<int>(mesh.vertices.size() - nv);
 }
 
 }  // namespace meshquilt

@@ -119,6 +119,9 @@ struct Topology {
     EdgeName first_non_manifold_edge, first_inconsistent_edge;
     int first_non_manifold_vertex = -1;
     int fans_at_first_non_manifold_vertex = 0;
+    /// Per corner (3 * face + k): a label shared by the corners of one fan of faces around its
+    /// vertex (faces joined across edges at that vertex); -1 for faces that repeat a vertex.
+    std::vector<int> fan_of_corner;
 
     [[nodiscard]] std::string non_manifold_edges_phrase() const;
     [[nodiscard]] std::string non_manifold_vertices_phrase() const;

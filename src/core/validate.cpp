@@ -2,7 +2,8 @@
 // validate(): the checks a user's mesh must pass, in a fixed order, each failing with a message
 // that names the first offending element; with `repair`, the safe repairs instead (dropping
 // degenerate faces and unreferenced vertices, merging duplicate vertices, making face orientation
-// consistent, turning inside-out closed elements right side out), each reported in words.
+// consistent, splitting non-manifold vertices, turning inside-out closed elements right side
+// out), each reported in words.
 
 #include "core/analysis_detail.h"
 #include "meshquilt/errors.h"
@@ -150,8 +151,12 @@ ValidationResult validate(const Mesh& input, const std::string& name, const Vali
     Topology topo = compute_topology(mesh);
     if (topo.non_manifold_edges > 0)
         error(topo.non_manifold_edges_phrase() + "; repair the mesh so that every edge has at most two faces");
-    if (topo.non_manifold_vertices > 0)
-        error(topo.non_manifold_vertices_phrase() + "; repair the mesh, e.g. by splitting the vertex");
+    if (topo.non_manifold_vertices > 0) {
+        if (!options.repair) error(topo.non_manifold_vertices_phrase() + "; pass --repair to split each into one vertex per fan");
+        const int added = split_non_manifold_vertices(mesh);
+        repaired("split " + topo.non_manifold_vertices_phrase() + " into one vertex per fan (" + count_of(added, "vertex", "vertices") + " added)");
+        topo = compute_topology(mesh);
+    }
     if (topo.inconsistent_edges > 0) {
         if (!options.repair) error(topo.inconsistent_phrase() + "; pass --repair to reorient the faces");
         const Reorientation r = reorient(mesh);

@@ -397,11 +397,21 @@ private:
 
     void prepare_base(const Mesh& input) {
         Mesh m = weld(input);
+        MeshAnalysis an = analyse(m);
+        // Welding can join fans of faces that the input kept apart (an STL soup of two solids that
+        // touch at a corner, or a base whose non-manifold vertices --repair split): each fan gets a
+        // vertex of its own again. The synthesis's copy only; the base is not changed.
+        if (an.non_manifold_edges == 0 && an.non_manifold_vertices > 0) {
+            split_non_manifold_vertices(m);
+            const int n = an.non_manifold_vertices;
+            warnings_.push_back("the base touches itself at " + std::to_string(n) + (n == 1 ? " non-manifold vertex" : " non-manifold vertices") +
+                                " (separate fans of faces meet there); each fan is decorated on its own");
+            an = analyse(m);
+        }
         // Components that face inwards are flipped (the decoration grows along the normals). Closed
         // ones by the sign of their volume; open ones (a scan with holes) only when they clearly
         // enclose space: the signed volume of the cones from their centroid is negative and at least
         // a tenth of what a sphere of the same area holds. An open sheet is left as it is.
-        const MeshAnalysis an = analyse(m);
         const std::vector<int> comp = connected_components(m);
         const std::size_t ncomp = an.elements.size();
         std::vector<Vec3> centre(ncomp, Vec3::Zero());
