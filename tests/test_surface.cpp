@@ -26,6 +26,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <random>
 #include <string>
 
@@ -452,6 +453,50 @@ TEST(Surface, SpheresTouchingAtAVertexAreBothCovered) {
         (element_centroid(e).dot(touch) < touch.squaredNorm() ? on_a : on_b)++;
     EXPECT_GT(on_a, 10);
     EXPECT_GT(on_b, 10);
+}
+
+// A sphere with lone triangles missing (a scan's holes) and a cap cut off: the small holes are
+// filled on the synthesis's copy, so elements run across them, and the cap's rim stays a rim.
+TEST(Surface, SmallHolesAreFilledAndALargeOneIsNot) {
+    const Mesh sphere = isect::icosphere(1.0, 4);
+    Mesh base = sphere;
+    base.faces.clear();
+    int lone = 0;
+    std::set<int> taken;  // vertices of the holes so far: no two holes share one
+    for (std::size_t f = 0; f < sphere.faces.size(); ++f) {
+        const Vec3 c = (sphere.vertices[static_cast<std::size_t>(sphere.faces[f][0])] + sphere.vertices[static_cast<std::size_t>(sphere.faces[f][1])] + sphere.vertices[static_cast<std::size_t>(sphere.faces[f][2])]) / 3.0;
+        // One face in 40 below the equator, no two sharing a vertex.
+        const mq::Tri& t = sphere.faces[f];
+        const bool hole = c.z() < -0.1 && f % 40 == 0 && !taken.count(t[0]) && !taken.count(t[1]) && !taken.count(t[2]);
+        if (hole) taken.insert({t[0], t[1], t[2]});
+        if (c.z() > 0.7) continue;  // the cap
+        if (hole) {
+            ++lone;
+            continue;
+        }
+        base.faces.push_back(sphere.faces[f]);
+    }
+    const mq::MeshAnalysis an = mq::analyse(base);
+    ASSERT_EQ(an.non_manifold_vertices, 0);
+    ASSERT_EQ(an.boundary_loops, lone + 1);
+    const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("rivets")), 0.2);
+    expect_whole_and_disjoint(run);
+    EXPECT_EQ(run.r.surface.base_holes_filled, lone);
+    EXPECT_EQ(mq::analyse(run.r.base).boundary_loops, 1);  // the base as used keeps the cap's rim
+    EXPECT_EQ(std::count_if(run.r.warnings.begin(), run.r.warnings.end(),
+                            [&](const std::string& w) {
+                                return w.find("the base has " + std::to_string(lone + 1) + " holes; the " + std::to_string(lone) + " smaller than") !=
+                                       std::string::npos;
+                            }),
+              1);
+    std::printf("sphere with %d small holes + rivets: report's region density %.3f - %.3f\n", lone, run.r.surface.region_density_min,
+                run.r.surface.region_density_max);
+    EXPECT_GE(run.r.surface.region_density_min, 0.85);  // measured 0.915: no bald spot at a hole
+    // Elements stay below the cap's rim (none is placed over the large hole).
+    double rim = -1.0;
+    for (const mq::Tri& t : base.faces)
+        for (int k = 0; k < 3; ++k) rim = std::max(rim, base.vertices[static_cast<std::size_t>(t[k])].z());
+    for (const Vec3& v : run.r.mesh.vertices) EXPECT_LE(v.z(), rim + 0.05);
 }
 
 /// The output's rings and how many others each interlocks with (|linking number| 1, pairs within

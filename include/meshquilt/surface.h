@@ -137,6 +137,10 @@ struct SurfaceQualityReport {
     /// slivers of CAD fans or CSG), with one ring of faces around them; their vertices stay on the
     /// base's surface.
     int base_thin_faces_remeshed = 0;
+    /// Holes of the base (boundary loops) filled on the synthesis's copy: those spanning at most a
+    /// quarter of the footprint's longer side (a scan's missing triangles), with faces over their
+    /// own vertices.
+    int base_holes_filled = 0;
     /// Output vertices behind the base (inner side of the closest base face, deeper than 1% of the
     /// shell height), and elements with any: decoration cutting into the base.
     int vertices_below_base = 0;

@@ -127,6 +127,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"base_flipped_components", s.base_flipped_components},
                         {"base_fold_vertices_smoothed", s.base_fold_vertices_smoothed},
                         {"base_thin_faces_remeshed", s.base_thin_faces_remeshed},
+                        {"base_holes_filled", s.base_holes_filled},
                         {"vertices_below_base", s.vertices_below_base},
                         {"elements_below_base", s.elements_below_base},
                         {"vertices_above_shell", s.vertices_above_shell},

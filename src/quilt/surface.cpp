@@ -12,6 +12,7 @@
 #include "meshquilt/surface.h"
 #include "quilt/field.h"
 #include "quilt/fill.h"
+#include "quilt/holes.h"
 #include "quilt/kernel.h"
 #include "quilt/match.h"
 #include "quilt/patch.h"
@@ -117,6 +118,11 @@ constexpr double kHoleBudget = 20.0;
 /// 0.926 and 0.731 -> 0.782.)
 constexpr double kHoleTriesFree = 4.0;
 constexpr long kHoleTriesPerRing = 200;
+/// A boundary loop of the base that spans at most this share of the footprint's longer side is a
+/// hole to fill on the synthesis's copy (quilt/holes.h), if it has at most kFillHoleVertices
+/// vertices: a scan's missing triangles, not a tube's open end.
+constexpr double kFillHoleExtent = 0.25;
+constexpr int kFillHoleVertices = 100;
 /// A mended ring keeps at least this share of its swatch element's size (square root of area).
 constexpr double kMendMinSize = 0.75;
 /// ... and this much of its swatch ring's diameter (mend_slot).
@@ -397,17 +403,7 @@ private:
 
     void prepare_base(const Mesh& input) {
         Mesh m = weld(input);
-        MeshAnalysis an = analyse(m);
-        // Welding can join fans of faces that the input kept apart (an STL soup of two solids that
-        // touch at a corner, or a base whose non-manifold vertices --repair split): each fan gets a
-        // vertex of its own again. The synthesis's copy only; the base is not changed.
-        if (an.non_manifold_edges == 0 && an.non_manifold_vertices > 0) {
-            split_non_manifold_vertices(m);
-            const int n = an.non_manifold_vertices;
-            warnings_.push_back("the base touches itself at " + std::to_string(n) + (n == 1 ? " non-manifold vertex" : " non-manifold vertices") +
-                                " (separate fans of faces meet there); each fan is decorated on its own");
-            an = analyse(m);
-        }
+        const MeshAnalysis an = analyse(m);
         // Components that face inwards are flipped (the decoration grows along the normals). Closed
         // ones by the sign of their volume; open ones (a scan with holes) only when they clearly
         // enclose space: the signed volume of the cones from their centroid is negative and at least
@@ -447,9 +443,10 @@ private:
             warnings_.push_back("the base has " + std::to_string(surface_.base_flipped_components) + " component(s) facing inwards (" +
                                 std::to_string(open_flipped) + " of them open); they were flipped so the decoration grows outwards");
         }
-        if (an.non_manifold_edges > 0 || an.non_manifold_vertices > 0)
-            throw InvalidInput("base is not manifold (" + std::to_string(an.non_manifold_edges) + " non-manifold edges, " +
-                               std::to_string(an.non_manifold_vertices) + " non-manifold vertices); repair it first");
+        // Non-manifold vertices are split below, once small holes are filled (two holes touching
+        // at a vertex are filled as two, which makes the vertex manifold again).
+        if (an.non_manifold_edges > 0)
+            throw InvalidInput("base is not manifold (" + std::to_string(an.non_manifold_edges) + " non-manifold edges); repair it first");
         const Box3 box = bounding_box(m);
         diagonal_ = box.size().norm();
         if (!(diagonal_ > 0)) throw InvalidInput("base has zero extent");
@@ -485,6 +482,24 @@ private:
                                " swatch footprints, about " + std::to_string(static_cast<long long>(est_faces / 1e6)) +
                                " million output faces (limit " + std::to_string(static_cast<long long>(kMaxOutputFaces / 1e6)) +
                                " million): choose a larger --scale or --swatch-size");
+
+        // Small holes (a scan's missing triangles) are filled on our copy: a patch must be a disc,
+        // and each hole smaller than a patch cut the patches around it short (quilt/holes.h).
+        // Filled faces are appended and no vertex is added, so a user field's indices still hold.
+        const quilt::HoleFilling holes = quilt::fill_small_holes(m, kFillHoleExtent * fp, kFillHoleVertices);
+        surface_.base_holes_filled = holes.filled;
+        if (holes.filled > 0)
+            warnings_.push_back("the base has " + std::to_string(holes.loops) + " holes; the " + std::to_string(holes.filled) +
+                                " smaller than " + num(kFillHoleExtent) + " of the swatch footprint (at most " + num(holes.largest) +
+                                " across) were filled on the synthesis's copy, so the decoration runs across them");
+        // Welding can join fans of faces that the input kept apart (an STL soup of two solids that
+        // touch at a corner, or a base whose non-manifold vertices --repair split): where filling
+        // did not join them, each fan gets a vertex of its own again (the synthesis's copy only).
+        if (const int n = analyse(m).non_manifold_vertices; n > 0) {
+            split_non_manifold_vertices(m);
+            warnings_.push_back("the base touches itself at " + std::to_string(n) + (n == 1 ? " non-manifold vertex" : " non-manifold vertices") +
+                                " (separate fans of faces meet there); each fan is decorated on its own");
+        }
 
         // Field on the welded base, before refinement (user indices refer to it).
         symmetry_ = opt_.symmetry > 0 ? opt_.symmetry : quilt::detect_symmetry(sw_);
