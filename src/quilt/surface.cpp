@@ -2542,6 +2542,11 @@ private:
         const double want = std::max(mesh_area(sw_.elements[static_cast<std::size_t>(j)]) * scale_ * scale_ * local * local, 1e-300);
         double fit = fit_io ? *fit_io : 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
         for (int variant = 0; variant < variants; ++variant) {
+            // Tilted tries stop with their budget before their poses are screened: past it every
+            // pose that passed the screen was refused anyway, and each hole still screened its
+            // four variants' poses against the standing rings' solids (the Bunny + Link benchmark
+            // spent 30 s so for no ring).
+            if (clash && variant > 0 && tilt_tries_ >= tilt_budget()) break;
             const Mesh& src = ring_variant(j, variant);
             if (src.faces.empty()) continue;
             const Vec3 src_centroid = area_centroid(src);
