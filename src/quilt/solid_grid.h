@@ -21,7 +21,14 @@ public:
     SolidGrid(const Mesh& m, int cells);
 
     /// Is `p` in a voxel whose centre lies inside the mesh? False outside the grid.
-    bool inside(const Vec3& p) const;
+    bool inside(const Vec3& p) const {
+        if (in_.empty()) return false;
+        const Vec3 q = (p - lo_) / h_;
+        if (!(q.x() >= 0.0 && q.y() >= 0.0 && q.z() >= 0.0)) return false;
+        const auto i = static_cast<long>(q.x()), j = static_cast<long>(q.y()), k = static_cast<long>(q.z());
+        if (i >= nx_ || j >= ny_ || k >= nz_) return false;
+        return in_[(static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)) * static_cast<std::size_t>(nz_) + static_cast<std::size_t>(k)] != 0;
+    }
     double cell() const { return h_; }
     bool empty() const { return in_.empty(); }
 

@@ -2338,14 +2338,25 @@ private:
                     lo = lo.cwiseMin(v);
                     hi = hi.cwiseMax(v);
                 }
+                // Vertices that no solid's inside voxel can hold are passed over unmapped (the same
+                // count, sooner): a voxel is inside when its centre is, within the mesh's convex
+                // hull, so a point in it lies within half a cell of the hull's box on each axis;
+                // mapped by M, within half the cell times the row's absolute sum. A whole cell
+                // keeps rounding clear.
+                const double h = mine.cell();
+                const Vec3 reach((std::fabs(M(0, 0)) + std::fabs(M(0, 1))) * h, (std::fabs(M(1, 0)) + std::fabs(M(1, 1))) * h, h);
+                const Vec3 mine_lo = lo - reach, mine_hi = hi + reach;
                 int inside = 0;
                 for (std::size_t k : blocking) {
                     StandingRing& o = standing[k];
                     if ((o.lo.array() > hi.array()).any() || (o.hi.array() < lo.array()).any()) continue;
                     if (o.solid.empty()) o.solid = quilt::SolidGrid(o.mesh, kFrameSolidCells);
+                    const Vec3 o_lo = o.lo - Vec3::Constant(o.solid.cell()), o_hi = o.hi + Vec3::Constant(o.solid.cell());
                     for (const Vec3& v : cand.vertices)
-                        if (o.solid.inside(v) && ++inside >= kHoleClash) return true;
+                        if ((v.array() >= o_lo.array()).all() && (v.array() <= o_hi.array()).all() && o.solid.inside(v) && ++inside >= kHoleClash)
+                            return true;
                     for (const Vec3& v : o.mesh.vertices) {
+                        if ((v.array() < mine_lo.array()).any() || (v.array() > mine_hi.array()).any()) continue;
                         const Vec2 q = Minv * (v.head<2>() - b);
                         if (mine.inside(Vec3(q.x(), q.y(), v.z())) && ++inside >= kHoleClash) return true;
                     }
