@@ -64,6 +64,12 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "base_faces", "symmetry"})
         EXPECT_TRUE(j.at("surface").contains(key)) << key;
+    // Every rivet measured against its swatch element, none off by more than 1.5 (the acceptance).
+    EXPECT_EQ(j.at("surface").at("elements_sized").get<int>(), j.at("elements").get<int>());
+    EXPECT_EQ(j.at("surface").at("elements_off_size").get<int>(), 0);
+    EXPECT_GE(j.at("surface").at("element_size_min").get<double>(), 1.0 / 1.5);
+    EXPECT_LE(j.at("surface").at("element_size_min").get<double>(), j.at("surface").at("element_size_max").get<double>());
+    EXPECT_LE(j.at("surface").at("element_size_max").get<double>(), 1.5);
     // A point of the base in the thinnest region: on the eight's surface (its centre, or an unset
     // origin, is not).
     const auto& at_json = j.at("surface").at("region_density_min_at");

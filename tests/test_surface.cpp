@@ -186,16 +186,29 @@ void expect_element_sizes(const SurfaceRun& run, double factor, double floor = 0
     for (std::size_t f = 0; f < comp.size(); ++f) source_area[static_cast<std::size_t>(comp[f])] += face_area(run.swatch, f);
     const auto parts = mq::test::split_elements(r.mesh, r.element_of_face);
     const double s2 = r.surface.base_scale * r.surface.base_scale;
-    int bad = 0;
+    int bad = 0, off = 0;
+    double lo = 1e300, hi = 0.0;
     std::string first;
     for (std::size_t e = 0; e < parts.size(); ++e) {
         const double want = source_area[static_cast<std::size_t>(r.source_element[e])] * s2;
         const double ratio = std::sqrt(area(parts[e]) / want);
+        lo = std::min(lo, ratio);
+        hi = std::max(hi, ratio);
+        off += ratio > 1.5 || ratio < 1.0 / 1.5;
         if (ratio > factor || ratio < std::max(1.0 / factor, floor)) {
             if (bad++ == 0) first = "element " + std::to_string(e) + " has " + std::to_string(ratio) + " times its swatch element's size";
         }
     }
     EXPECT_EQ(bad, 0) << first;
+    // The report measures the same (before a thinned swatch's elements are thickened back: then
+    // it compares thinned with thinned, and this measure thickened with the swatch as given).
+    const bool thinned = std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) { return w.find("quilted thinned") != std::string::npos; });
+    if (!thinned && !parts.empty()) {
+        EXPECT_EQ(r.surface.elements_sized, static_cast<int>(parts.size()));
+        EXPECT_NEAR(r.surface.element_size_min, lo, 1e-9 * lo);
+        EXPECT_NEAR(r.surface.element_size_max, hi, 1e-9 * hi);
+        EXPECT_EQ(r.surface.elements_off_size, off);
+    }
 }
 
 /// No element is torn: none of its faces is larger than `factor` times the swatch's largest face

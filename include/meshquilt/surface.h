@@ -128,6 +128,13 @@ struct SurfaceQualityReport {
     /// to the region's area-weighted centre): where to look first when the decoration is sparse.
     Vec3 region_density_min_at = Vec3::Zero();
     int regions = 0;
+    /// Each element's size over its swatch element's at the run's scale (and the guidance field's
+    /// local scale): the square root of the area ratio, measured before a thinned swatch's
+    /// elements are thickened back. Threads and runs with a user height are not measured.
+    double element_size_min = 0.0;
+    double element_size_max = 0.0;
+    int elements_sized = 0;     ///< elements measured
+    int elements_off_size = 0;  ///< of them, smaller than 1/1.5 or larger than 1.5 times their swatch element
     int base_flipped_components = 0;  ///< inside-out components flipped for the synthesis
     /// Shell embedding: vertices on folds of the base (no direction sees all their faces) moved to
     /// their neighbours' mean on the synthesis's copy of the base.

@@ -136,6 +136,9 @@ constexpr double kMinElementSize = 0.7;
 constexpr double kMaxElementSize = 1.4;
 /// ... and one below it is first enlarged in the frame to this share of its size.
 constexpr double kGrowBackSize = 0.85;
+/// The report counts elements whose size is off their swatch element's by more than this factor
+/// (issue 3's acceptance: within 1.5).
+constexpr double kReportedSizeFactor = 1.5;
 /// Below this share of the swatch's density in some region, the result carries a warning.
 constexpr double kSparseWarning = 0.5;
 /// warp_to_old_rings: an old ring pairs with a new ring of its kind within this many spacings,
@@ -3129,6 +3132,7 @@ private:
         surface_.swatch_density = r.swatch_density;
         for (char p : processed_) surface_.base_faces_processed += p;
         region_density(result);
+        element_sizes(result);
         // A swatch too large for the base's features: every placement folded, collided or fell off
         // its patch. An empty decoration is no result; a very sparse one gets a warning.
         const double footprint = scale_ * std::max(sw_.box.size().x(), sw_.box.size().y());
@@ -3323,6 +3327,39 @@ private:
                     surface_.region_density_min_at = base_.centroid[f];
                 }
         }
+    }
+
+    /// Each element's size as a share of its swatch element's at the run's scale and the field's
+    /// local scale on its first vertex's base face (the square root of the area ratio, as
+    /// element_size measures it): the smallest and largest, and how many lie outside a factor of
+    /// kReportedSizeFactor. Threads (cut and stitched to any length) and a run with --height (the
+    /// elements' thickness is not the swatch's) are not measured.
+    void element_sizes(const SurfaceQuiltResult& result) {
+        const std::size_t n = result.source_element.size();
+        std::vector<double> area(n, 0.0);
+        std::vector<int> face(n, -1);
+        for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
+            const auto e = static_cast<std::size_t>(result.element_of_face[f]);
+            area[e] += face_area(result.mesh, f);
+            if (face[e] < 0) face[e] = result.anchors[static_cast<std::size_t>(result.mesh.faces[f][0])].face;
+        }
+        double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+        for (std::size_t e = 0; e < n; ++e) {
+            const int source = result.source_element[e];
+            if (source < 0 || face[e] < 0 || height_scale_ > 0) continue;
+            const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
+            if (quilt::is_elongated(src)) continue;
+            const double local = local_scale_[static_cast<std::size_t>(face[e])];
+            const double want = mesh_area(src) * scale_ * scale_ * local * local;
+            if (!(want > 0.0)) continue;
+            const double size = std::sqrt(area[e] / want);
+            lo = std::min(lo, size);
+            hi = std::max(hi, size);
+            ++surface_.elements_sized;
+            surface_.elements_off_size += size < 1.0 / kReportedSizeFactor || size > kReportedSizeFactor;
+        }
+        surface_.element_size_min = surface_.elements_sized ? lo : 0.0;
+        surface_.element_size_max = surface_.elements_sized ? hi : 0.0;
     }
 
     /// make_frame's largest disc as a share of a patch's (0: a patch's); set by mend_threads for
