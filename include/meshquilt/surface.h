@@ -108,6 +108,7 @@ struct SurfaceQualityReport {
     int elements_mended = 0;       ///< rings (or a layered swatch's scales) put into empty lattice slots after the last patch
     int ring_holes_filled = 0;     ///< of them, rings put into holes between lattices (off every lattice's slots)
     int ring_holes_tilted = 0;     ///< of those, rings tilted from their swatch ring's pose to fit
+    int ring_holes_enlarged = 0;   ///< of those, rings put in at 1.1 of their swatch ring's size (reaching their neighbours' links)
     int elements_enlarged = 0;     ///< placed elements the patch's plan left below the size floor (0.7), enlarged to 0.85 of their size
     int rings_unlinked_removed = 0;  ///< interlocking swatches: rings that linked with no other ring, removed before mending
     int symmetry = 0;              ///< N of the N-direction field used

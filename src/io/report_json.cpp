@@ -114,6 +114,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"elements_mended", s.elements_mended},
                         {"ring_holes_filled", s.ring_holes_filled},
                         {"ring_holes_tilted", s.ring_holes_tilted},
+                        {"ring_holes_enlarged", s.ring_holes_enlarged},
                         {"rings_unlinked_removed", s.rings_unlinked_removed},
                         {"symmetry", s.symmetry},
                         {"scale", s.scale},

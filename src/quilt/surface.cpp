@@ -86,6 +86,15 @@ constexpr std::array<double, 2> kHoleShifts{0.2, 0.4};
 /// ... turned by up to this much either way (radians) in this many steps each side.
 constexpr double kHoleTurn = 0.3;
 constexpr int kHoleTurnSteps = 3;
+/// ... at these shares of its size, in turn; a lattice slot (mend_slot without a hole's screen)
+/// tries all but the last. Shrunk, a ring collides less; enlarged, last, one that fits a wide hole
+/// but links with nothing around it reaches its neighbours (on spot 3,047 of the 10,495 untilted
+/// tries embedded failed for want of a link alone). Session 40, chain mail at the default scale,
+/// seed 1, lowest region: the eight 0.866 -> 0.891, fandisk 0.793 -> 0.817, spot 0.839 -> 0.847,
+/// igea 0.848 -> 0.852, fertility 0.886 -> 0.874 (docs/surface.md step 10). Not for a thinned
+/// swatch: its enlarged rings stood too close once thickened back (two below the size floor and
+/// a region at 1.158 on the eight).
+constexpr std::array<double, 4> kRingSizes{1.0, 0.92, 0.85, 1.1};
 /// ... and, when no pose of the swatch's ring fits, tilted by this much (radians) either way about
 /// the swatch's x and y axes (ring_variant: kHoleVariants poses in all, the untilted first, each
 /// lifted so it stays above the base). A ring between two lattices that meet at an angle sits
@@ -2541,7 +2550,8 @@ private:
     /// Tries swatch ring `j`, shifted by `shift` in the swatch, where `pose` puts it (centre `c` in
     /// the frame): as it is, turned by up to 6 degrees either way about c, then shrunk to 0.92 and
     /// 0.85 of its size (a ring between two lattices that meet at an angle often fits only a little
-    /// smaller; each shrink of the 38 rings mended on the eight, 15 were smaller). The first pose
+    /// smaller; each shrink of the 38 rings mended on the eight, 15 were smaller), and in a hole
+    /// (`clash` given) last enlarged to 1.1 (kRingSizes). The first pose
     /// that lies on the patch, collides with nothing and does not fold is added. fill_ring_holes
     /// passes its own `turns`, a quick `clash` test that refuses a pose before it is embedded,
     /// `fit_io`, the map's scale for the ring's size, found once per hole (0: not yet), and
@@ -2566,8 +2576,10 @@ private:
             const Vec3 src_centroid = area_centroid(src);
             const double src_diameter = vertex_diameter(src);
             const quilt::SolidGrid* mine = clash ? &solid_of(j, variant) : nullptr;
-            for (const double shrink : {1.0, 0.92, 0.85})
+            const std::size_t sizes = clash && !(sw_.thinned > 0.0) ? kRingSizes.size() : kRingSizes.size() - 1;
+            for (std::size_t size = 0; size < sizes; ++size)
                 for (const double turn : turns ? *turns : kTurns) {
+                    const double shrink = kRingSizes[size];
                     Eigen::Matrix2d T;
                     T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
                     Mesh m = src;
@@ -2633,6 +2645,7 @@ private:
                     add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
                     ++surface_.elements_mended;  // ring_holes_filled counts the hole fillers among them
                     if (variant > 0) ++surface_.ring_holes_tilted;
+                    if (shrink > 1.0) ++surface_.ring_holes_enlarged;
                     // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
                     *placed = {j, T * pose.A, T * (pose.A * shift + pose.t - c) + c, 0.0};
                     return true;
