@@ -2947,12 +2947,14 @@ private:
     }
     /// ... its size as a share of its swatch element's (the square root of the area ratio); -1 where
     /// too_small does not apply.
-    double element_size(const Mesh& embedded, int source, double local) const {
+    double element_size(const Mesh& embedded, int source, double local) const { return size_share(mesh_area(embedded), source, local); }
+    /// ... of an element of area `area`.
+    double size_share(double area, int source, double local) const {
         if (source < 0 || height_scale_ > 0) return -1.0;
         const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
         if (quilt::is_elongated(src)) return -1.0;
         const double want = mesh_area(src) * scale_ * scale_ * local * local;
-        return want > 0.0 ? std::sqrt(mesh_area(embedded) / want) : -1.0;
+        return want > 0.0 ? std::sqrt(area / want) : -1.0;
     }
 
     /// `m` scaled by `f` in xy about its area centroid (as embed_sized resizes it).
@@ -3343,8 +3345,8 @@ private:
     }
 
     /// Each element's size as a share of its swatch element's at the run's scale and the field's
-    /// local scale on its first vertex's base face (the square root of the area ratio, as
-    /// element_size measures it): the smallest and largest, and how many lie outside a factor of
+    /// local scale on its first vertex's base face (size_share, as the stage's size floor
+    /// measures it): the smallest and largest, and how many lie outside a factor of
     /// kReportedSizeFactor. Threads (cut and stitched to any length) and a run with --height (the
     /// elements' thickness is not the swatch's) are not measured.
     void element_sizes(const SurfaceQuiltResult& result) {
@@ -3358,14 +3360,9 @@ private:
         }
         double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
         for (std::size_t e = 0; e < n; ++e) {
-            const int source = result.source_element[e];
-            if (source < 0 || face[e] < 0 || height_scale_ > 0) continue;
-            const Mesh& src = sw_.elements[static_cast<std::size_t>(source)];
-            if (quilt::is_elongated(src)) continue;
-            const double local = local_scale_[static_cast<std::size_t>(face[e])];
-            const double want = mesh_area(src) * scale_ * scale_ * local * local;
-            if (!(want > 0.0)) continue;
-            const double size = std::sqrt(area[e] / want);
+            if (face[e] < 0) continue;
+            const double size = size_share(area[e], result.source_element[e], local_scale_[static_cast<std::size_t>(face[e])]);
+            if (size < 0.0) continue;
             lo = std::min(lo, size);
             hi = std::max(hi, size);
             ++surface_.elements_sized;
