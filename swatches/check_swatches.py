@@ -42,7 +42,7 @@ import manifold3d
 import trimesh
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-NAMES = ['weave', 'chainmail', 'pebbles', 'rivets', 'cobbles', 'scales']
+NAMES = ['weave', 'chainmail', 'pebbles', 'rivets', 'cobbles', 'scales', 'knots']
 
 EXPECT = {
     'weave': dict(elements=(12, 16), faces=(13000, 17000), genus=0),
@@ -51,6 +51,7 @@ EXPECT = {
     'rivets': dict(elements=(30, 60), faces=(5000, 8000), genus=0),
     'cobbles': dict(elements=(30, 60), faces=(3000, 8000), genus=0),
     'scales': dict(elements=(40, 80), faces=(12000, 24000), genus=0),
+    'knots': dict(elements=(15, 40), faces=(8000, 18000), genus=0),
 }
 GAP_FRACTION = 0.02          # required clearance between elements, relative to element size
 SEARCH = 0.5                 # distances above this are reported as "> SEARCH"

@@ -785,6 +785,164 @@ def gen_scales():
 
 
 # ----------------------------------------------------------------------------------------------
+# 7. knots: Truchet knot work (winding strands with over/under gaps)
+
+def strand_part(points, half_w, half_h, sides):
+    """A strand along a polyline of (x, y, z of its centre line): a flat-topped elliptic tube that
+    keeps its width through bends, its ends capped flat across the line."""
+    part = Part()
+    n = len(points)
+    rings = []
+    for k in range(n):
+        p = points[k]
+        a, b = points[max(k - 1, 0)], points[min(k + 1, n - 1)]
+        t = v_unit((b[0] - a[0], b[1] - a[1], 0.0))
+        side = (-t[1], t[0], 0.0)
+        miter = 1.0
+        if 0 < k < n - 1:   # the side grows by 1 / cos(half the turn)
+            t0 = v_unit((p[0] - a[0], p[1] - a[1], 0.0))
+            miter = 1.0 / max(0.5, v_dot((-t0[1], t0[0], 0.0), side))
+        ring = []
+        for m in range(sides):
+            th_m = TAU * (m + 0.5) / sides
+            q = v_add(p, v_add(v_mul(side, half_w * miter * math.cos(th_m)), (0.0, 0.0, half_h * math.sin(th_m))))
+            ring.append(part.vert(q))
+        rings.append(ring)
+    for k in range(n - 1):
+        r0, r1 = rings[k], rings[k + 1]
+        for m in range(sides):
+            m1 = (m + 1) % sides
+            part.quad(r0[m], r1[m], r1[m1], r0[m1])
+    for k in (0, n - 1):
+        ci = part.vert(points[k])
+        ring = rings[k]
+        for m in range(sides):
+            a, b = ring[m], ring[(m + 1) % sides]
+            part.tri(ci, a, b) if k == 0 else part.tri(ci, b, a)
+    if part.signed_volume() < 0:
+        part.flip()
+    return part
+
+
+def polyline_length(pts):
+    return sum(v_len(v_sub(pts[k + 1], pts[k])) for k in range(len(pts) - 1))
+
+
+def cut_polyline(pts, s0, s1, near):
+    """The part of polyline pts between arc lengths s0 < s1; a vertex nearer than `near` to a cut
+    point is left out (a short last segment would turn the end ring against its neighbour)."""
+    out = []
+    acc = 0.0
+    for k in range(len(pts) - 1):
+        a, b = pts[k], pts[k + 1]
+        seg = v_len(v_sub(b, a))
+        if not out and s0 < acc + seg:
+            out.append(v_add(a, v_mul(v_sub(b, a), (s0 - acc) / seg)))
+        if s1 <= acc + seg:
+            out.append(v_add(a, v_mul(v_sub(b, a), (s1 - acc) / seg)))
+            return out
+        if out and acc + seg - s0 > near and s1 - (acc + seg) > near:
+            out.append(b)
+        acc += seg
+    return out
+
+
+def gen_knots():
+    seed = 7
+    rng = random.Random(seed)
+    P = dict(tiles=8, pitch=1.25, half_width=0.16, half_height=0.11, gap=0.2, crossing=0.5,
+             bump=0.07, arc_segments=6, sides=8)
+    n, pitch, hw, hh, gap = P['tiles'], P['pitch'], P['half_width'], P['half_height'], P['gap']
+    half = 0.5 * pitch
+    # Tile (i, j): 'A' holds quarter arcs round its lower-left and upper-right corners joining the
+    # midpoints of its edges, 'B' round the other two corners; 'X' (never on the border) two
+    # straight lines, one passing over the other (rising by `bump`), the other stopping `gap`
+    # short of it on both sides. Pieces meet at the edge midpoints (nodes) and join into strands.
+    pieces = []   # (node, node, points from the first node to the second)
+
+    def node(i, j, side):
+        return {'W': ('v', i, j), 'E': ('v', i + 1, j), 'S': ('h', i, j), 'N': ('h', i, j + 1)}[side]
+
+    def arc(cx, cy, a0, a1):
+        m = P['arc_segments']
+        return [(cx + half * math.cos(a0 + (a1 - a0) * k / m), cy + half * math.sin(a0 + (a1 - a0) * k / m), hh)
+                for k in range(m + 1)]
+
+    for j in range(n):
+        for i in range(n):
+            x0, y0 = i * pitch, j * pitch
+            inner = 0 < i < n - 1 and 0 < j < n - 1
+            if inner and rng.random() < P['crossing']:
+                x_over = rng.random() < 0.5
+                steps = 2 * P['arc_segments']
+                rise = [P['bump'] * math.cos(math.pi * (k / steps - 0.5)) ** 2 for k in range(steps + 1)]
+                xs = [(x0 + pitch * k / steps, y0 + half, hh + rise[k]) for k in range(steps + 1)]
+                ys = [(x0 + half, y0 + pitch * k / steps, hh + rise[k]) for k in range(steps + 1)]
+                over, under = (xs, ys) if x_over else (ys, xs)
+                a, b = ('W', 'E') if x_over else ('S', 'N')
+                c, d = ('S', 'N') if x_over else ('W', 'E')
+                pieces.append((node(i, j, a), node(i, j, b), over))
+                stop = half - hw - gap
+                u0, u1 = (under[0][0], under[0][1], hh), (under[-1][0], under[-1][1], hh)
+                dirn = v_unit(v_sub(u1, u0))
+                pieces.append((node(i, j, c), ('end', i, j, 0), [u0, v_add(u0, v_mul(dirn, stop))]))
+                pieces.append((node(i, j, d), ('end', i, j, 1), [u1, v_sub(u1, v_mul(dirn, stop))]))
+            elif rng.random() < 0.5:   # A
+                pieces.append((node(i, j, 'S'), node(i, j, 'W'), arc(x0, y0, 0.0, 0.5 * math.pi)))
+                pieces.append((node(i, j, 'N'), node(i, j, 'E'), arc(x0 + pitch, y0 + pitch, math.pi, 1.5 * math.pi)))
+            else:   # B
+                pieces.append((node(i, j, 'S'), node(i, j, 'E'), arc(x0 + pitch, y0, math.pi, 0.5 * math.pi)))
+                pieces.append((node(i, j, 'W'), node(i, j, 'N'), arc(x0, y0 + pitch, 1.5 * math.pi, 2.0 * math.pi)))
+    at = {}
+    for k, (e0, e1, _) in enumerate(pieces):
+        at.setdefault(e0, []).append(k)
+        at.setdefault(e1, []).append(k)
+    used = [False] * len(pieces)
+
+    def walk(k, start):
+        """The strand's points from node `start` through piece k onwards, to an end or back to
+        `start` (a loop)."""
+        pts, frm = [], start
+        while True:
+            used[k] = True
+            e0, e1, p = pieces[k]
+            seq, nxt = (p, e1) if e0 == frm else (list(reversed(p)), e0)
+            pts.extend(seq if not pts else seq[1:])
+            others = [q for q in at[nxt] if q != k]
+            if not others or used[others[0]]:
+                return pts
+            k, frm = others[0], nxt
+
+    strands = []
+    for k, (e0, e1, _) in enumerate(pieces):   # open strands: from the border or a stub's end
+        for e in (e0, e1):
+            if not used[k] and len(at[e]) == 1:
+                strands.append(walk(k, e))
+    loops = 0
+    for k in range(len(pieces)):   # closed loops are broken by a gap, at a random point
+        if used[k]:
+            continue
+        pts = walk(k, pieces[k][0])
+        total = polyline_length(pts)
+        s = rng.uniform(0.2, 0.8) * total
+        # rotate the loop so that the gap lies at its two ends
+        near = 0.5 * half * 0.5 * math.pi / P['arc_segments']   # half an arc segment
+        tail, head = cut_polyline(pts, s + 0.5 * gap, total, near), cut_polyline(pts, 0.0, s - 0.5 * gap, near)
+        strands.append(tail + head[1:])
+        loops += 1
+    parts = [strand_part(pts, hw, hh, P['sides']) for pts in strands]
+    normalise_placement(parts)
+    desc = ['Truchet knot work: %d x %d tiles %g wide; a tile holds two quarter arcs round opposite'
+            % (n, n, pitch),
+            'corners (either pair) or, off the border, a crossing whose under line stops %g short'
+            % gap,
+            'of the over line, which rises by %g. The arcs join into %d winding strands (flat-topped'
+            % (P['bump'], len(parts)),
+            'tubes %g wide, %g high, ends capped flat); %d closed loops were broken by a gap of %g.'
+            % (2 * hw, 2 * hh, loops, gap)]
+    return parts, seed, P, desc
+
+# ----------------------------------------------------------------------------------------------
 
 SWATCHES = [
     ('weave', gen_weave),
@@ -793,6 +951,7 @@ SWATCHES = [
     ('rivets', gen_rivets),
     ('cobbles', gen_cobbles),
     ('scales', gen_scales),
+    ('knots', gen_knots),
 ]
 
 
