@@ -51,6 +51,90 @@ TEST(SwatchData, KnowsRingsAndGaps) {
     EXPECT_EQ(touching.near_gap, 0.0);
 }
 
+namespace {
+
+/// A closed prism `h` high over a star-shaped polygon (counter-clockwise), caps fanned from its centroid.
+Mesh prism(const std::vector<mq::Vec2>& polygon, double h) {
+    Mesh m;
+    const int n = static_cast<int>(polygon.size());
+    mq::Vec2 c = mq::Vec2::Zero();
+    for (const mq::Vec2& p : polygon) c += p / n;
+    for (const mq::Vec2& p : polygon) m.vertices.emplace_back(p.x(), p.y(), 0.0);
+    for (const mq::Vec2& p : polygon) m.vertices.emplace_back(p.x(), p.y(), h);
+    m.vertices.emplace_back(c.x(), c.y(), 0.0);
+    m.vertices.emplace_back(c.x(), c.y(), h);
+    for (int k = 0; k < n; ++k) {
+        const int k1 = (k + 1) % n;
+        m.faces.push_back({k, k1, n + k1});
+        m.faces.push_back({k, n + k1, n + k});
+        m.faces.push_back({2 * n, k1, k});
+        m.faces.push_back({2 * n + 1, n + k, n + k1});
+    }
+    return m;
+}
+
+/// A strand bent round a circular arc: radius `r` (its centre line), `w` wide, `h` high, through
+/// `angle` radians in `n` steps.
+Mesh arc_strand(double r, double w, double h, double angle, int n) {
+    Mesh m;
+    for (int k = 0; k <= n; ++k) {
+        const double a = angle * k / n;
+        for (const double rr : {r - 0.5 * w, r + 0.5 * w})
+            for (const double z : {0.0, h}) m.vertices.emplace_back(rr * std::cos(a), rr * std::sin(a), z);
+    }
+    // Vertex 4k + {0: inner bottom, 1: inner top, 2: outer bottom, 3: outer top}.
+    auto quad = [&m](int a, int b, int c, int d) {
+        m.faces.push_back({a, b, c});
+        m.faces.push_back({a, c, d});
+    };
+    for (int k = 0; k < n; ++k) {
+        const int i = 4 * k, j = 4 * (k + 1);
+        quad(i + 1, i + 3, j + 3, j + 1);  // top
+        quad(i + 0, j + 0, j + 2, i + 2);  // bottom
+        quad(i + 2, j + 2, j + 3, i + 3);  // outer wall
+        quad(i + 0, i + 1, j + 1, j + 0);  // inner wall
+    }
+    quad(0, 2, 3, 1);  // first end
+    const int e = 4 * n;
+    quad(e + 0, e + 1, e + 3, e + 2);  // last end
+    return m;
+}
+
+}  // namespace
+
+// Strands (quilt::is_strand): closed genus-0 elements whose footprint is several times longer than
+// wide but which are no threads (bent: knot work, a winding cord). They are never squeezed or shrunk
+// to fit. slenderness is the footprint's area over the square of the widest disc inside it.
+TEST(SwatchData, KnowsStrands) {
+    std::vector<mq::Vec2> circle, square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int k = 0; k < 64; ++k) circle.emplace_back(std::cos(2 * M_PI * k / 64), std::sin(2 * M_PI * k / 64));
+    EXPECT_NEAR(mq::quilt::slenderness(prism(circle, 0.3)), M_PI / 4, 0.06);
+    EXPECT_NEAR(mq::quilt::slenderness(prism(square, 0.3)), 1.0, 0.08);
+    // A half ring 2 pi long and 0.4 wide: 15.7, less on the raster (6 pixels across the strand).
+    const Mesh half_ring = arc_strand(2.0, 0.4, 0.2, M_PI, 24);
+    ASSERT_TRUE(mq::quilt::is_closed_oriented(half_ring));
+    EXPECT_NEAR(mq::quilt::slenderness(half_ring), 2 * M_PI / 0.4, 0.2 * 2 * M_PI / 0.4);
+    EXPECT_TRUE(mq::quilt::is_strand(half_ring));
+    // A quarter ring 2 wide at radius 3 (4.7 long): 2.4, a blob; 1.5 wide (6.3 long): a strand.
+    EXPECT_FALSE(mq::quilt::is_strand(arc_strand(3.0, 2.0, 0.3, 0.5 * M_PI, 24)));
+    EXPECT_TRUE(mq::quilt::is_strand(arc_strand(4.0, 1.5, 0.3, 0.5 * M_PI, 24)));
+    EXPECT_FALSE(mq::quilt::is_strand(prism(circle, 0.3)));
+    // A straight bar is a thread (quilt::is_elongated), not a strand; a ring is neither.
+    Mesh bar = shapes::cube(1.0);
+    for (Vec3& v : bar.vertices) v = Vec3(6.0 * v.x(), 0.4 * v.y(), 0.2 * v.z());
+    EXPECT_FALSE(mq::quilt::is_strand(bar));
+    EXPECT_FALSE(mq::quilt::is_strand(shapes::torus(2.0, 0.2)));
+    // The bundled swatches: only the knots hold strands, so nothing changes for the others.
+    for (const char* name : {"weave", "chainmail", "pebbles", "rivets", "cobbles", "scales"}) {
+        const auto s = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path(name)));
+        ASSERT_EQ(s.element_strand.size(), s.elements.size()) << name;
+        EXPECT_EQ(std::count(s.element_strand.begin(), s.element_strand.end(), 1), 0) << name;
+    }
+    const auto knots = mq::quilt::prepare_swatch(mq::read_mesh(swatch_path("knots")));
+    const auto strands = std::count(knots.element_strand.begin(), knots.element_strand.end(), 1);
+    EXPECT_GE(10 * strands, 8 * static_cast<long>(knots.elements.size())) << strands << " of " << knots.elements.size();
+}
+
 // Layered swatches (quilt::SwatchData::layered): elements that overlap in projection and keep apart
 // in 3D only, as overlapping scales do. Only the scales are layered among the bundled swatches; the
 // chain mail's rings overlap in projection too, but they are rings, not blobs.

@@ -94,20 +94,8 @@ void Coverage::cover_outside(const Coverage& mask) {
         if (!mask.covered_[k]) covered_[k] = 1;
 }
 
-std::vector<double> Coverage::empty_distance() const { return empty_distance(0, 0, nx_ - 1, ny_ - 1); }
-
-std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) const {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    i0 = std::max(i0, 0);
-    j0 = std::max(j0, 0);
-    i1 = std::min(i1, nx_ - 1);
-    j1 = std::min(j1, ny_ - 1);
-    const int w = i1 - i0 + 1, h = j1 - j0 + 1;
-    if (w <= 0 || h <= 0) return {};
-    const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-    std::vector<double> sq(n);
-    for (int j = 0; j < h; ++j)
-        for (int i = 0; i < w; ++i) sq[static_cast<std::size_t>(j) * w + i] = covered(i0 + i, j0 + j) ? 0.0 : inf;
+void squared_distance_transform(std::vector<double>& sq, int w, int h) {
+    if (w <= 0 || h <= 0) return;
     const int longest = std::max(w, h);
     std::vector<double> f, d;
     std::vector<double> z(static_cast<std::size_t>(longest) + 1);
@@ -125,6 +113,23 @@ std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) con
     };
     pass(w, h, 1, static_cast<std::size_t>(w));  // columns
     pass(h, w, static_cast<std::size_t>(w), 1);  // rows
+}
+
+std::vector<double> Coverage::empty_distance() const { return empty_distance(0, 0, nx_ - 1, ny_ - 1); }
+
+std::vector<double> Coverage::empty_distance(int i0, int j0, int i1, int j1) const {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    i0 = std::max(i0, 0);
+    j0 = std::max(j0, 0);
+    i1 = std::min(i1, nx_ - 1);
+    j1 = std::min(j1, ny_ - 1);
+    const int w = i1 - i0 + 1, h = j1 - j0 + 1;
+    if (w <= 0 || h <= 0) return {};
+    const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    std::vector<double> sq(n);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) sq[static_cast<std::size_t>(j) * w + i] = covered(i0 + i, j0 + j) ? 0.0 : inf;
+    squared_distance_transform(sq, w, h);
     std::vector<double> out(n);
     for (std::size_t k = 0; k < n; ++k) out[k] = sq[k] == inf ? std::numeric_limits<double>::max() : pixel_ * std::sqrt(sq[k]);
     return out;
@@ -160,7 +165,11 @@ double Coverage::area_density(const Vec2& c, double radius, const Coverage* mask
 bool is_blob_source(const SwatchData& sw, int source) {
     if (source < 0 || static_cast<std::size_t>(source) >= sw.elements.size()) return false;
     const auto s = static_cast<std::size_t>(source);
-    return sw.element_closed[s] && sw.element_genus[s] == 0 && !is_elongated(sw.elements[s]);
+    return sw.element_closed[s] && sw.element_genus[s] == 0 && !is_elongated(sw.elements[s]) && !is_strand_source(sw, source);
+}
+
+bool is_strand_source(const SwatchData& sw, int source) {
+    return source >= 0 && static_cast<std::size_t>(source) < sw.element_strand.size() && sw.element_strand[static_cast<std::size_t>(source)] != 0;
 }
 
 FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area, bool projected) {
@@ -182,6 +191,29 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
         for (const double f : {1.0, kFillScale}) {
             FillSetup::Shape shape{static_cast<int>(e), m, 0.0, f, mesh_area(m)};
             for (Vec3& v : shape.mesh.vertices) v = Vec3(f * (v.x() - c.x()), f * (v.y() - c.y()), v.z());
+            shape.area = mesh_area(shape.mesh);
+            s.shapes.push_back(std::move(shape));
+        }
+    }
+    // Strands go in whole (a strand squeezed or shrunk is thinner than its kind): those no larger
+    // than the median strand or the largest blob, as a spot seldom holds more.
+    std::vector<std::pair<double, std::size_t>> strands;
+    for (std::size_t e = 0; e < sw.elements.size(); ++e)
+        if (is_strand_source(sw, static_cast<int>(e))) strands.push_back({0.5 * bounding_box(sw.elements[e]).size().head<2>().norm(), e});
+    if (!strands.empty()) {
+        std::vector<double> half;
+        for (const auto& [h, e] : strands) half.push_back(h);
+        std::nth_element(half.begin(), half.begin() + static_cast<std::ptrdiff_t>(half.size() / 2), half.end());
+        const double cap = std::max(half[half.size() / 2], s.reach);
+        for (const auto& [h, e] : strands) {
+            if (h > cap) continue;
+            const Mesh& m = sw.elements[e];
+            const Vec3 c = area_centroid(m);
+            const Vec3 size = bounding_box(m).size();
+            s.reach = std::max(s.reach, h);
+            narrowest = std::min(narrowest, std::min(size.x(), size.y()));
+            FillSetup::Shape shape{static_cast<int>(e), m, 0.0, 1.0, mesh_area(m), true};
+            for (Vec3& v : shape.mesh.vertices) v = Vec3(v.x() - c.x(), v.y() - c.y(), v.z());
             shape.area = mesh_area(shape.mesh);
             s.shapes.push_back(std::move(shape));
         }
@@ -246,7 +278,7 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
         for (const FillSetup::Shape& s : setup.shapes) {
             if (s.area <= best_area) break;
             Mesh placed = translated(s.mesh, Vec3(c.x(), c.y(), 0.0));
-            if (!setup.layered && !squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
+            if (!setup.layered && !s.whole && !squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
             const double a = mesh_area(placed);
             if (a <= best_area || a < setup.min_area * s.swatch_area || a < setup.area_floor || !fits(placed, s.source)) continue;
             best = std::move(placed);

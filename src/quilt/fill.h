@@ -22,6 +22,11 @@ inline constexpr double kFillPush = 0.45;
 inline constexpr double kFillScale = 0.8;
 inline constexpr double kFillWindow = 3.0;
 
+/// Exact squared Euclidean distance transform (Felzenszwalb and Huttenlocher 2012) of a w x h raster
+/// stored row by row: on entry 0 at the pixels distances are measured to and infinity elsewhere; on
+/// return each pixel's squared distance, in pixels, to the nearest of them (infinity when none).
+void squared_distance_transform(std::vector<double>& sq, int w, int h);
+
 /// What the xy projections of meshes cover, on a raster of square pixels over a rectangle.
 class Coverage {
 public:
@@ -69,9 +74,12 @@ private:
     bool projected_ = false;
 };
 
-/// Is swatch element `source` a blob: closed, genus 0 and not a thread (a pebble, a stone, a rivet
-/// head; not a ring)? False for -1 (no swatch element).
+/// Is swatch element `source` a blob: closed, genus 0, neither a thread nor a strand (a pebble, a
+/// stone, a rivet head; not a ring, not knot work)? False for -1 (no swatch element).
 bool is_blob_source(const SwatchData& swatch, int source);
+
+/// Is swatch element `source` a strand (SwatchData::element_strand)? False for -1.
+bool is_strand_source(const SwatchData& swatch, int source);
 
 /// What the bald-spot filler needs of a swatch, in the swatch's units.
 struct FillSetup {
@@ -81,8 +89,12 @@ struct FillSetup {
         double area = 0.0;
         double scale = 1.0;
         double swatch_area = 0.0;  ///< of the swatch element at full size
+        bool whole = false;        ///< a strand (SwatchData::element_strand): goes in unsqueezed or not at all
     };
-    std::vector<Shape> shapes;  ///< the swatch's blobs at full size and at kFillScale, largest first
+    /// The swatch's blobs at full size and at kFillScale, and its strands no longer than most (half
+    /// their diagonal at most the median strand's or the largest blob's) at full size only, largest
+    /// first.
+    std::vector<Shape> shapes;
     double pixel = 0.0;         ///< raster pixel: half the swatch's clearance
     double reach = 0.0;         ///< the largest blob's half diagonal
     double swatch_density = 0.0;  ///< element area per footprint area in the swatch's inset window

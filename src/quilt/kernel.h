@@ -142,6 +142,24 @@ std::vector<Vec2> xy_hull(const Mesh& m);
 /// boundary or unused vertices gives a larger V - F/2 and stays a thread.
 bool is_elongated(const Mesh& m);
 
+/// Beyond the paper: a closed genus-0 element that is not a thread (is_elongated) is a strand, not a
+/// blob, when its footprint is at least this many times longer than wide (slenderness): knot work,
+/// a winding cord, a snowflake's arms. A strand squeezed or shrunk to fit comes out thinner than its
+/// kind, which shows; a blob squeezed is a smaller pebble. A disc gives 0.79, a square 1, a 2:1
+/// ellipse 1.6; the bundled pebbles 0.94-1.24, rivets 0.89, cobbles 1.01-2.16, scales 1.60.
+inline constexpr double kSlender = 2.5;
+/// Raster of slenderness: pixels along the footprint's longer side.
+inline constexpr int kSlenderPixels = 64;
+
+/// How many times longer than wide `m`'s footprint (xy projection) is: its area over the square of
+/// its width, the diameter of the widest disc inside it (an exact distance transform on a raster of
+/// kSlenderPixels along the longer side). A strand w wide and L long, bent or not, gives about L / w
+/// (a strand a few pixels wide less: 16% less at 6 pixels). 0 for an empty or flat footprint.
+double slenderness(const Mesh& m);
+
+/// A strand: closed, genus 0, not a thread (is_elongated), slenderness at least kSlender.
+bool is_strand(const Mesh& m);
+
 /// The smallest distance, capped at `cap`, between vertices of `a` (with bounding box `a_box`) and
 /// of `b` (looked at only within `cap` of that box; elements of more than about 2,000 vertices are
 /// sampled with a stride). Plain loops: the result does not depend on any tree's build order.

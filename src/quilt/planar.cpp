@@ -424,8 +424,9 @@ private:
                     hulls.push_back(quilt::xy_hull(elems_[static_cast<std::size_t>(id)].mesh));
                 return hulls;
             },
-            // A layered swatch's shape comes unsqueezed (FillSetup::layered): it must keep the clearance itself.
-            [&](const Mesh& m, int source) { return !collider_.collides(m) && (!sw_.layered || keeps_gap(m, source)); },
+            // A layered swatch's shape, and a strand, come unsqueezed (FillSetup::layered, Shape::whole):
+            // they must keep the clearance themselves.
+            [&](const Mesh& m, int source) { return !collider_.collides(m) && ((!sw_.layered && !quilt::is_strand_source(sw_, source)) || keeps_gap(m, source)); },
             [&](const Mesh& m, int source) { add_element(m, source); });
         stage_seconds_["bald spots"] += seconds_since(t0);
     }

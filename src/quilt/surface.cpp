@@ -1916,8 +1916,9 @@ private:
                 if (!embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded, &resize)) return false;
                 // Resized for the surface, it keeps the clearance at that scale (see apply).
                 if (resize != 1.0 && !keeps_clearance(resized_in_frame(m, resize), source, standing_ptrs, nullptr, resize)) return false;
-                // A layered swatch's shape comes unsqueezed (FillSetup::layered): it keeps the clearance itself.
-                if (resize == 1.0 && fill_.layered && !keeps_clearance(m, source, standing_ptrs)) return false;
+                // A layered swatch's shape, and a strand, come unsqueezed (FillSetup::layered,
+                // Shape::whole): they keep the clearance themselves.
+                if (resize == 1.0 && (fill_.layered || quilt::is_strand_source(sw_, source)) && !keeps_clearance(m, source, standing_ptrs)) return false;
                 // On the surface it keeps kFillMinArea of its swatch element's area (where the map
                 // shrinks ground that the rescaled element cannot fit on, embed_sized keeps it as is).
                 const double want = mesh_area(sw_.elements[static_cast<std::size_t>(source)]) * scale_ * scale_ * local * local;

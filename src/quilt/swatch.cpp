@@ -378,6 +378,7 @@ SwatchData prepare_swatch(const Mesh& input) {
         s.element_closed.push_back(quilt::is_closed_oriented(e));
         // Euler: V - E + F = 2 - 2g on a closed surface, where E = 3F / 2.
         s.element_genus.push_back(s.element_closed.back() ? std::max(0, (2 - (static_cast<int>(e.vertices.size()) - static_cast<int>(e.faces.size()) / 2)) / 2) : 0);
+        s.element_strand.push_back(s.element_closed.back() && s.element_genus.back() == 0 && quilt::is_strand(e));
         s.elements.push_back(std::move(e));
     }
     // Disjoint as given, or thinned apart (NormalOffsets::thinned checked that).

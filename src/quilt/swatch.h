@@ -38,6 +38,9 @@ struct SwatchData {
     /// Genus of each element (closed elements; 0 for open ones): a ring (genus >= 1) can interlock
     /// with its neighbours, a blob cannot.
     std::vector<int> element_genus;
+    /// Each element a strand (quilt::is_strand: a slender closed genus-0 element that is not a
+    /// thread), which is never squeezed or shrunk to fit, only cut clear where it lost a merge.
+    std::vector<char> element_strand;
     /// The largest element's xy bounding box over the swatch's: near 1 for a swatch that is one
     /// connected net or lattice (a grid of bars), about a thread's width over the swatch's for a
     /// weave. Such an element can only be placed whole (where two placements overlap, the cuts
