@@ -453,10 +453,20 @@ void relax_seam(Mesh& m, const std::vector<int>& seeds, int rings, int iteration
     }
 }
 
-/// A closed genus-0 element that is neither a thread nor a strand (a pebble, a stone, a rivet head;
-/// not a ring, not knot work).
-bool is_blob(const Mesh& m) {
-    return !is_elongated(m) && is_closed_oriented(m) && euler_genus_zero(m) && slenderness(m) < kSlender;
+/// A closed genus-0 element that is neither a thread nor a strand (`strand`: a pebble, a stone, a
+/// rivet head; not a ring, not knot work).
+bool is_blob(const Mesh& m, bool strand) {
+    return !strand && !is_elongated(m) && is_closed_oriented(m) && euler_genus_zero(m);
+}
+
+/// Is `m`, of swatch element `source` (-1: unknown), a strand (KernelParams::strands)? Of a swatch
+/// without strands, nothing is (no raster drawn for a pebble of unknown source).
+bool strand_of(const Mesh& m, int source, const KernelParams& params) {
+    if (!params.strands.empty()) {
+        if (source >= 0 && static_cast<std::size_t>(source) < params.strands.size()) return params.strands[static_cast<std::size_t>(source)] != 0;
+        if (std::find(params.strands.begin(), params.strands.end(), 1) == params.strands.end()) return false;
+    }
+    return is_strand(m);
 }
 
 int count_components(const Mesh& m) {
@@ -1077,7 +1087,8 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         // Beyond the paper: deformation towards a partner of another size (pebbles vary 2x) must not
         // resize an element much; past kMaxAreaChange the undeformed element is used instead.
         // A strand (is_strand) changes its width with its area, which shows sooner: kMaxStrandAreaChange.
-        const double max_change = is_strand(mo) || is_strand(mi) ? kMaxStrandAreaChange : kMaxAreaChange;
+        const bool strand_o = strand_of(mo, old[o].source, params), strand_i = strand_of(mi, fresh[static_cast<std::size_t>(e)].source, params);
+        const double max_change = strand_o || strand_i ? kMaxStrandAreaChange : kMaxAreaChange;
         auto resized = [max_change](const Mesh& m, const Mesh& ref) {
             const double r = mesh_area(m) / std::max(mesh_area(ref), 1e-300);
             return r > max_change || r < 1.0 / max_change;
@@ -1093,7 +1104,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             const auto reach = [](const Mesh& x) { return bounding_box(x).size().head<2>().norm(); };
             return params.layered && reach(m) > kMaxStitchReach * std::max(reach(a), reach(b));
         };
-        const bool extends = (is_elongated(mo) && is_elongated(mi)) || (is_strand(mo) && is_strand(mi));  // threads, strands
+        const bool extends = (is_elongated(mo) && is_elongated(mi)) || (strand_o && strand_i);  // threads, strands
         if (ch.kind == PatchPlan::Change::Stitched && !extends &&
             (resized(ch.mesh, own.old_part > own.new_part ? mo : mi) || lengthened(ch.mesh, mo, mi))) {
             const bool new_wins = own.new_part > own.old_part;
@@ -1112,7 +1123,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         // elements around it by the swatch's clearance (squeeze_clear), like a stone cut to fit.
         const bool new_lost = ch.kind == PatchPlan::Change::Deformed;
         const bool old_lost = ch.kind == PatchPlan::Change::Replaced && old[o].source >= 0;
-        if (params.blob_gap > 0.0 && (new_lost || old_lost) && is_blob(mo) && is_blob(mi)) {
+        if (params.blob_gap > 0.0 && (new_lost || old_lost) && is_blob(mo, strand_o) && is_blob(mi, strand_i)) {
             Mesh loser = new_lost ? mi : mo;
             std::vector<const Mesh*> others{&ch.mesh};
             for (std::size_t o2 = 0; o2 < old.size(); ++o2)
@@ -1125,7 +1136,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
                 squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
                 squeezed[k].mesh = std::move(loser);
             }
-        } else if (params.layer_gap > 0.0 && (new_lost || old_lost) && is_blob(mo) && is_blob(mi)) {
+        } else if (params.layer_gap > 0.0 && (new_lost || old_lost) && is_blob(mo, strand_o) && is_blob(mi, strand_i)) {
             // A layered swatch's blobs (scales) overlap in xy, so no squeeze clears them; the loser
             // is kept whole where it keeps the swatch's clearance in 3D from the winner, which then
             // stays as it was too (shingles of two patches offset by part of a row overlap as the
@@ -1204,7 +1215,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
         ch.mesh = fresh[e].mesh;
         // Beyond the paper: a blob that would collide with the output may go in squeezed clear of
         // it instead (see squeeze_clear; the fallback of an addition is always such a squeeze).
-        if (params.blob_gap > 0.0 && is_blob(m)) {
+        if (params.blob_gap > 0.0 && is_blob(m, strand_of(m, fresh[e].source, params))) {
             std::vector<const Mesh*> others;
             for (const OldElement& oe : old) others.push_back(&oe.mesh);
             for (std::size_t e2 = 0; e2 < fresh.size(); ++e2)

@@ -29,6 +29,11 @@ struct KernelParams {
     /// still handed back as an addition (a remnant: it overlaps the winner), for a caller that cuts
     /// threads where they collide (the surface stage, quilt/trim.h). Off: the loser is dropped.
     bool thread_remnants = false;
+    /// Per swatch element, is it a strand (SwatchData::element_strand)? An element of a known
+    /// source is judged by it (a deformed copy keeps its kind, and no raster is drawn), one of no
+    /// known source by is_strand, unless no swatch element is a strand; all of them by is_strand
+    /// when this is empty.
+    std::vector<char> strands;
     /// Beyond the paper, off by default: two threads deform with whole cross-sections first
     /// (whole_section_targets; the paper's targets when that stitch fails or crosses an old
     /// element), and a thread's seam is relaxed by Taubin's shrinking and inflating steps, so

@@ -162,6 +162,7 @@ public:
         params_.blob_gap = sw_.elements_disjoint && !sw_.layered ? sw_.near_gap : 0.0;
         params_.layered = sw_.layered;
         params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
+        params_.strands = sw_.element_strand;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare"] += seconds_since(t0);
     }

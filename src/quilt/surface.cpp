@@ -337,6 +337,7 @@ public:
         params_.thread_remnants = true;
         params_.layered = sw_.layered;
         params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
+        params_.strands = sw_.element_strand;
         rng_.seed(opt_.seed);
         stage_seconds_["prepare swatch"] += seconds_since(t0);
         t0 = Clock::now();
