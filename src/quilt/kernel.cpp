@@ -37,8 +37,8 @@ bool euler_genus_zero(const Mesh& m) {
 /// Largest change of an element's area that deformation may make (Section 2.6 moves an element
 /// half-way to its partner, which may be of another size).
 constexpr double kMaxAreaChange = 1.3;
-/// ... and of a strand's (is_strand: its width changes with its area; at 1.3, 5% of the knots'
-/// strands came out more than 15% thinner, 40 x 40, seed 1).
+/// ... and of a strand's (is_strand: its width changes with its area; at 1.3, 5% of a draft knots
+/// swatch's strands came out more than 15% thinner, 40 x 40, seed 1).
 constexpr double kMaxStrandAreaChange = 1.1;
 
 /// A stitched compact element may reach (xy box diagonal) at most this much beyond the larger of
