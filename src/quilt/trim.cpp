@@ -210,6 +210,10 @@ std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, con
         if (hi - lo < cut.min_length) continue;
         const double a = lo > t0 ? mid_gap(ts, lo) : -inf;
         const double b = hi < t1 ? mid_gap(ts, hi) : inf;
+        // A span between two neighbouring vertex coordinates (under long faces) moves both cuts to
+        // the same gap: the box would have no width, and CGAL's clip crashed on it (a segmentation
+        // fault; tests/data/trim/strand_clip.obj). Such a span holds no vertex: no piece.
+        if (!(b > a)) continue;
         std::vector<Mesh> parts;
         if (!clip_span(m, axis, a, b, &parts)) continue;
         for (Mesh& piece : parts) {
