@@ -668,31 +668,21 @@ double slenderness(const Mesh& m) {
     const Box3 box = bounding_box(m);
     const double side = std::max(box.size().x(), box.size().y());
     if (!(side > 0.0) || !std::isfinite(side)) return 0.0;
-    // The footprint on a raster of kSlenderPixels along the box's longer side, one pixel of margin.
+    // The footprint on a raster of kSlenderPixels along the box's longer side, one pixel of margin
+    // (Coverage: a pixel is covered when its centre lies in a face's projection).
     const double px = side / kSlenderPixels;
-    const int nx = static_cast<int>(std::ceil(box.size().x() / px)) + 2, ny = static_cast<int>(std::ceil(box.size().y() / px)) + 2;
-    const double x0 = box.min.x() - px, y0 = box.min.y() - px;
+    Coverage cov(box.min.x() - px, box.min.y() - px, box.max.x() + px, box.max.y() + px, px);
+    cov.add(m);
     // Squared distance to the nearest pixel outside the footprint (0 there, infinity inside).
-    constexpr double inf = std::numeric_limits<double>::infinity();
+    const int nx = cov.nx(), ny = cov.ny();
     std::vector<double> sq(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0.0);
-    for (const Tri& f : m.faces) {
-        const Vec2 a = m.vertices[static_cast<std::size_t>(f[0])].head<2>(), b = m.vertices[static_cast<std::size_t>(f[1])].head<2>(),
-                   c = m.vertices[static_cast<std::size_t>(f[2])].head<2>();
-        const double d = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-        if (d == 0.0) continue;
-        const int i0 = std::max(0, static_cast<int>(std::floor((std::min({a.x(), b.x(), c.x()}) - x0) / px - 0.5)));
-        const int i1 = std::min(nx - 1, static_cast<int>(std::ceil((std::max({a.x(), b.x(), c.x()}) - x0) / px - 0.5)));
-        const int j0 = std::max(0, static_cast<int>(std::floor((std::min({a.y(), b.y(), c.y()}) - y0) / px - 0.5)));
-        const int j1 = std::min(ny - 1, static_cast<int>(std::ceil((std::max({a.y(), b.y(), c.y()}) - y0) / px - 0.5)));
-        for (int j = j0; j <= j1; ++j)
-            for (int i = i0; i <= i1; ++i) {
-                const Vec2 q(x0 + (i + 0.5) * px, y0 + (j + 0.5) * px);
-                const double u = ((b - q).x() * (c - q).y() - (b - q).y() * (c - q).x()) / d;
-                const double v = ((c - q).x() * (a - q).y() - (c - q).y() * (a - q).x()) / d;
-                if (u >= 0.0 && v >= 0.0 && u + v <= 1.0) sq[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)] = inf;
+    long covered = 0;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+            if (cov.covered(i, j)) {
+                sq[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)] = std::numeric_limits<double>::infinity();
+                ++covered;
             }
-    }
-    const auto covered = std::count(sq.begin(), sq.end(), inf);
     if (covered == 0) return 0.0;
     squared_distance_transform(sq, nx, ny);
     const double deepest = std::sqrt(*std::max_element(sq.begin(), sq.end()));
