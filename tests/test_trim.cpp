@@ -219,6 +219,144 @@ TEST(ThreadPieces, ABentThreadCutAcrossBothLegsGivesTwoPieces) {
     EXPECT_NEAR(std::abs(y[0] - y[1]), 2.0, 0.1);  // one piece per leg
 }
 
+// A strand is cut across itself, not across an axis of the plane: a bar over one leg of a hairpin
+// cuts that leg only (thread_pieces, cutting across the hairpin's axis, cuts both legs). The two
+// pieces are whole, clear of the bar by the margin along the strand, and hold the hairpin's volume
+// but the blocked length.
+TEST(StrandPieces, CutsAcrossTheStrandWhereItCrosses) {
+    const Mesh m = hairpin();
+    const Mesh bar = mq::test::isect::cuboid(Vec3(3.8, -1.0, 0.2), Vec3(4.2, 0.8, 0.4));
+    mq::ElementCollider collider;
+    collider.add(bar);
+    const std::vector<char> bad = collider.colliding_faces(m);
+    ASSERT_GT(std::count(bad.begin(), bad.end(), 1), 0);
+    const double margin = 0.3;
+    EXPECT_EQ(quilt::thread_pieces(m, bad, {margin, 1.0}).size(), 3U);  // both legs cut
+    const auto pieces = quilt::strand_pieces(m, bad, {margin, 1.0});
+    ASSERT_EQ(pieces.size(), 2U);
+    double kept = 0.0;
+    int whole_upper_leg = 0;
+    for (const Mesh& p : pieces) {
+        expect_whole(p);
+        EXPECT_FALSE(collider.collides(p));
+        kept += volume(p);
+        const mq::Box3 b = mq::bounding_box(p);
+        if (b.max.y() > 1.5) {  // the rest: the upper leg whole, the bend, the lower leg from the bar on
+            ++whole_upper_leg;
+            EXPECT_LT(b.min.x(), 0.05);
+            for (const Vec3& v : p.vertices)
+                if (v.y() < 0.5) EXPECT_GT(v.x(), 4.2 + margin - 0.15);
+        } else {  // the lower leg up to the bar
+            EXPECT_LT(b.min.x(), 0.05);
+            EXPECT_NEAR(b.max.x(), 3.8 - margin, 0.15);
+        }
+    }
+    EXPECT_EQ(whole_upper_leg, 1);
+    const double section = volume(hairpin()) / (16.0 + kPi);  // per unit of length, about
+    EXPECT_NEAR(kept, volume(m) - section * (0.4 + 2 * margin), 0.35 * section);
+}
+
+// Without flags a strand stays whole; flags over the whole strand leave nothing; a piece shorter than
+// the minimum is dropped; a compact element (no two distinct ends) gives no pieces.
+TEST(StrandPieces, KeepsWholeDropsShortAndRefusesBlobs) {
+    const Mesh m = hairpin();
+    const auto whole = quilt::strand_pieces(m, std::vector<char>(m.faces.size(), 0), {0.3, 1.0});
+    ASSERT_EQ(whole.size(), 1U);
+    EXPECT_EQ(whole[0].vertices, m.vertices);
+    EXPECT_TRUE(quilt::strand_pieces(m, std::vector<char>(m.faces.size(), 1), {0.3, 1.0}).empty());
+    std::vector<char> bad(m.faces.size(), 0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)  // the lower leg from x = 1.5 to 2
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& v = m.vertices[m.faces[f][k]];
+            bad[f] = static_cast<char>(bad[f] | (v.y() < 0.5 && v.x() > 1.5 && v.x() < 2.0));
+        }
+    const auto pieces = quilt::strand_pieces(m, bad, {0.2, 2.0});  // the stub before x = 1.3 is too short
+    ASSERT_EQ(pieces.size(), 1U);  // the rest: the lower leg from x = 2.2, the bend and the upper leg
+    for (const Vec3& v : pieces[0].vertices)
+        if (v.y() < 0.5) EXPECT_GT(v.x(), 2.0);
+    EXPECT_LT(mq::bounding_box(pieces[0]).min.x(), 0.05);
+    const Mesh cube = mq::test::isect::cuboid(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    std::vector<char> one(cube.faces.size(), 0);
+    one[0] = 1;
+    EXPECT_TRUE(quilt::strand_pieces(cube, one, {0.1, 0.2}).empty());
+}
+
+/// A flat star (height 0.2) of `arms` arms, half-width 0.15, reaching 3 from the origin, round a
+/// small hub: each arm's top and bottom are ladders of 30 steps, the hub a fan from the origin, the
+/// outline's walls quads; closed, oriented outwards.
+Mesh star(int arms) {
+    std::vector<mq::Vec2> outline;  // per arm: one side outwards (31 points), the other back
+    const int steps = 30, per_arm = 2 * (steps + 1);
+    for (int a = 0; a < arms; ++a) {
+        const double t = 2 * kPi * a / arms;
+        const mq::Vec2 u(std::cos(t), std::sin(t)), w(-std::sin(t), std::cos(t));
+        const double hub = arms > 2 ? 0.15 / std::tan(kPi / arms) + 0.01 : 0.01;
+        for (int k = 0; k <= steps; ++k) outline.push_back((hub + (3.0 - hub) * k / steps) * u - 0.15 * w);
+        for (int k = steps; k >= 0; --k) outline.push_back((hub + (3.0 - hub) * k / steps) * u + 0.15 * w);
+    }
+    const int n = static_cast<int>(outline.size());
+    Mesh m;
+    for (const double z : {0.0, 0.2})
+        for (const mq::Vec2& p : outline) m.vertices.emplace_back(p.x(), p.y(), z);
+    m.vertices.emplace_back(0, 0, 0);
+    m.vertices.emplace_back(0, 0, 0.2);
+    auto top = [&](int a, int b, int c) {
+        m.faces.emplace_back(n + a, n + b, n + c);
+        m.faces.emplace_back(c, b, a);
+    };
+    for (int a = 0; a < arms; ++a) {
+        const int o = a * per_arm;
+        auto side1 = [&](int k) { return o + k; };                  // outwards, on the right of the arm
+        auto side2 = [&](int k) { return o + per_arm - 1 - k; };    // the left side, at step k
+        for (int k = 0; k < steps; ++k) {
+            top(side1(k), side1(k + 1), side2(k + 1));
+            top(side1(k), side2(k + 1), side2(k));
+        }
+        const int next = ((a + 1) % arms) * per_arm;
+        m.faces.emplace_back(2 * n + 1, n + side1(0), n + side2(0));  // the hub, on top and below
+        m.faces.emplace_back(side2(0), side1(0), 2 * n);
+        m.faces.emplace_back(2 * n + 1, n + side2(0), n + next);
+        m.faces.emplace_back(next, side2(0), 2 * n);
+    }
+    for (int i = 0; i < n; ++i) {  // walls
+        const int j = (i + 1) % n;
+        m.faces.emplace_back(i, j, n + j);
+        m.faces.emplace_back(i, n + j, n + i);
+    }
+    if (volume(m) < 0)
+        for (Tri& t : m.faces) std::swap(t[1], t[2]);
+    return m;
+}
+
+// A branching element (three arms: a snowflake's or a star's shape) is not a strand to cut: cut
+// across its "length" between two arm tips, the third arm would go with whichever piece holds the
+// hub. It gives no pieces; two arms (a bar through the hub) are cut as any strand.
+TEST(StrandPieces, ABranchingElementIsNotCut) {
+    for (const int arms : {2, 3}) {
+        SCOPED_TRACE(arms);
+        const Mesh m = star(arms);
+        ASSERT_TRUE(quilt::is_closed_oriented(m));
+        ASSERT_GT(volume(m), 0.0);
+        std::vector<char> bad(m.faces.size(), 0);
+        for (std::size_t f = 0; f < m.faces.size(); ++f)  // the first arm from 1.5 to 1.8 out
+            for (int k = 0; k < 3; ++k) {
+                const Vec3& v = m.vertices[m.faces[f][k]];
+                bad[f] = static_cast<char>(bad[f] | (std::abs(v.y()) < 0.2 && v.x() > 1.5 && v.x() < 1.8));
+            }
+        ASSERT_GT(std::count(bad.begin(), bad.end(), 1), 0);
+        const auto pieces = quilt::strand_pieces(m, bad, {0.1, 0.5});
+        if (arms == 3) {
+            EXPECT_TRUE(pieces.empty());
+            continue;
+        }
+        ASSERT_EQ(pieces.size(), 2U);
+        for (const Mesh& p : pieces) {
+            expect_whole(p);
+            for (const Vec3& v : p.vertices) EXPECT_FALSE(v.x() > 1.55 && v.x() < 1.75) << v.transpose();
+        }
+    }
+}
+
 // A thread that passes through itself (here a thread along x and a second closed tube across it, in
 // one mesh) is outside CGAL's clip precondition: its corefinement once crashed (a Truchet knot on a
 // genus-16 plate). It gives no pieces, even where the part to keep is clean, and never crashes.

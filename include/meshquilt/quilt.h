@@ -29,6 +29,7 @@ struct QualityReport {
     int elements_crowded_out = 0; ///< new elements without partner left out: an old element stands at about the same place
     int elements_squeezed = 0;    ///< blobs that lost a merge kept, squeezed clear of the winner (beyond the paper)
     int losers_kept = 0;          ///< a layered swatch's blobs (scales) that lost a merge kept whole beside the winner (beyond the paper)
+    int strand_pieces = 0;        ///< pieces of colliding strands (knot work) that went in, cut across the strand clear of what they crossed (beyond the paper)
     int joints_closed = 0;        ///< blobs grown into joints wider than the swatch's (beyond the paper)
     int bald_spots_filled = 0;    ///< elements placed one by one into bare spots after the last patch (beyond the paper)
     double cell_size = 0.0;

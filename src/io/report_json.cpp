@@ -25,6 +25,7 @@ nlohmann::json planar(const QualityReport& r, double total_seconds) {
     j["elements_crowded_out"] = r.elements_crowded_out;
     j["elements_squeezed"] = r.elements_squeezed;
     j["losers_kept"] = r.losers_kept;
+    j["strand_pieces"] = r.strand_pieces;
     j["bald_spots_filled"] = r.bald_spots_filled;
     j["joints_closed"] = r.joints_closed;
     j["cell_size"] = r.cell_size;

@@ -240,7 +240,7 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
 int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(const Vec2&)>& may_centre,
                const std::function<double(const Vec2&, double)>& density,
                const std::function<std::vector<std::vector<Vec2>>(const Vec2&, double)>& around,
-               const std::function<bool(const Mesh&, int)>& fits, const std::function<void(const Mesh&, int)>& add) {
+               const std::function<bool(Mesh&, int)>& fits, const std::function<void(const Mesh&, int)>& add) {
     if (setup.shapes.empty()) return 0;
     const int nx = cov.nx(), ny = cov.ny();
     const double pixel = cov.pixel();
@@ -281,9 +281,11 @@ int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(c
             if (!setup.layered && !s.whole && !squeeze_clear(placed, hulls, setup.gap, setup.min_area / (s.scale * s.scale), kFillPush)) continue;
             const double a = mesh_area(placed);
             if (a <= best_area || a < setup.min_area * s.swatch_area || a < setup.area_floor || !fits(placed, s.source)) continue;
+            const double kept = mesh_area(placed);  // `fits` may have cut it
+            if (kept <= best_area) continue;
             best = std::move(placed);
             best_source = s.source;
-            best_area = a;
+            best_area = kept;
         }
         if (best_source < 0) {
             leave();

@@ -128,13 +128,15 @@ FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse
 /// allows is wider than `setup.smallest_spot` and `density` (element area per ground area in a disc)
 /// says the ground around it is sparser than the swatch, the shape that covers most there after squeezing
 /// clear of the hulls `around` gives (squeeze_clear) and that `fits` (collision tests) accepts goes
-/// in through `add` (both get the element in the raster's frame and its swatch element). A spot
-/// nothing fits is left. Distances are updated in a window around each new element. Returns the
-/// number added.
+/// in through `add` (both get the element in the raster's frame and its swatch element). `fits`
+/// may cut the element to what fits (a strand's pieces, quilt::strand_pieces): it then replaces it
+/// with the pieces, as one mesh of several components, which `add` gets and which counts by its
+/// area. A spot nothing fits is left. Distances are updated in a window around each new element.
+/// Returns the number added (a cut element counts once).
 int fill_spots(Coverage& cov, const FillSetup& setup, const std::function<bool(const Vec2&)>& may_centre,
                const std::function<double(const Vec2&, double)>& density,
                const std::function<std::vector<std::vector<Vec2>>(const Vec2&, double)>& around,
-               const std::function<bool(const Mesh&, int)>& fits, const std::function<void(const Mesh&, int)>& add);
+               const std::function<bool(Mesh&, int)>& fits, const std::function<void(const Mesh&, int)>& add);
 
 /// The sides of a convex polygon (counter-clockwise, as xy_hull gives it) worth measuring: edges of at
 /// least 5% of its perimeter (a rounded corner is many short edges, not a side).

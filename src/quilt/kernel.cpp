@@ -300,37 +300,6 @@ std::vector<char> anchored_components(const Mesh& m, const CutResult& cut) {
     return out;
 }
 
-/// Boundary loops, each in the direction its faces traverse it. False when a vertex has several
-/// outgoing boundary edges (the boundary is not a set of simple loops).
-bool boundary_loops(const Mesh& m, std::vector<std::vector<int>>* loops) {
-    std::unordered_map<std::uint64_t, char> directed;
-    directed.reserve(m.faces.size() * 3);
-    for (const Tri& f : m.faces)
-        for (int k = 0; k < 3; ++k) directed[edge_key(f[k], f[(k + 1) % 3])] = 1;
-    std::map<int, int> next;
-    for (const Tri& f : m.faces)
-        for (int k = 0; k < 3; ++k) {
-            const int a = f[k], b = f[(k + 1) % 3];
-            if (directed.count(edge_key(b, a))) continue;
-            if (!next.emplace(a, b).second) return false;
-        }
-    std::map<int, char> done;
-    for (const auto& [start, unused] : next) {
-        if (done.count(start)) continue;
-        std::vector<int> loop;
-        int v = start;
-        while (!done.count(v)) {
-            done[v] = 1;
-            loop.push_back(v);
-            auto it = next.find(v);
-            if (it == next.end()) return false;
-            v = it->second;
-        }
-        if (v != start || loop.size() < 3) return false;
-        loops->push_back(std::move(loop));
-    }
-    return true;
-}
 
 Vec3 closest_on_polyline(const std::vector<Vec3>& V, const std::vector<int>& loop, const Vec3& p) {
     double best = std::numeric_limits<double>::infinity();
@@ -486,6 +455,38 @@ int count_components(const Mesh& m) {
 }
 
 }  // namespace
+
+/// Boundary loops, each in the direction its faces traverse it. False when a vertex has several
+/// outgoing boundary edges (the boundary is not a set of simple loops).
+bool boundary_loops(const Mesh& m, std::vector<std::vector<int>>* loops) {
+    std::unordered_map<std::uint64_t, char> directed;
+    directed.reserve(m.faces.size() * 3);
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) directed[edge_key(f[k], f[(k + 1) % 3])] = 1;
+    std::map<int, int> next;
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            const int a = f[k], b = f[(k + 1) % 3];
+            if (directed.count(edge_key(b, a))) continue;
+            if (!next.emplace(a, b).second) return false;
+        }
+    std::map<int, char> done;
+    for (const auto& [start, unused] : next) {
+        if (done.count(start)) continue;
+        std::vector<int> loop;
+        int v = start;
+        while (!done.count(v)) {
+            done[v] = 1;
+            loop.push_back(v);
+            auto it = next.find(v);
+            if (it == next.end()) return false;
+            v = it->second;
+        }
+        if (v != start || loop.size() < 3) return false;
+        loops->push_back(std::move(loop));
+    }
+    return true;
+}
 
 // -------------------------------------------------------------------------------------------------
 
@@ -1141,6 +1142,13 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
                 squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
                 squeezed[k].mesh = std::move(loser);
             }
+        }
+        else if (params.strand_losers && (new_lost || old_lost) && strand_o && strand_i) {
+            // Beyond the paper: a strand that lost is handed back whole as an addition; the stage
+            // cuts it where it meets the winner (strand_pieces), as knot work passes under.
+            squeezed[k].kind = PatchPlan::Change::Added;
+            squeezed[k].source = new_lost ? fresh[static_cast<std::size_t>(e)].source : old[o].source;
+            squeezed[k].mesh = new_lost ? mi : mo;
         }
         if (params.thread_remnants && new_lost && is_elongated(mo) && is_elongated(mi)) {
             remnants[k].kind = PatchPlan::Change::Added;

@@ -29,6 +29,10 @@ struct KernelParams {
     /// still handed back as an addition (a remnant: it overlaps the winner), for a caller that cuts
     /// threads where they collide (the surface stage, quilt/trim.h). Off: the loser is dropped.
     bool thread_remnants = false;
+    /// Beyond the paper: of two strands that could not be stitched, the loser is handed back whole
+    /// as an addition (after the squeezed blobs), for a caller that cuts strands where they collide
+    /// (quilt::strand_pieces). Off: the loser is dropped.
+    bool strand_losers = false;
     /// Per swatch element, is it a strand (SwatchData::element_strand)? An element of a known
     /// source is judged by it (a deformed copy keeps its kind, and no raster is drawn), one of no
     /// known source by is_strand, unless no swatch element is a strand; all of them by is_strand
@@ -173,5 +177,9 @@ double element_gap(const Mesh& a, const Box3& a_box, const Mesh& b, double cap);
 /// True when every edge has exactly two faces with opposite orientation (a closed, oriented,
 /// edge-manifold surface).
 bool is_closed_oriented(const Mesh& mesh);
+
+/// Boundary loops of `m`, each in the direction its faces traverse it, appended to `loops`. False
+/// when a vertex has several outgoing boundary edges (the boundary is not a set of simple loops).
+bool boundary_loops(const Mesh& m, std::vector<std::vector<int>>* loops);
 
 }  // namespace meshquilt::quilt

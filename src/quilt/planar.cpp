@@ -11,6 +11,7 @@
 #include "quilt/kernel.h"
 #include "quilt/match.h"
 #include "quilt/swatch.h"
+#include "quilt/trim.h"
 
 #include <algorithm>
 #include <array>
@@ -163,6 +164,7 @@ public:
         params_.layered = sw_.layered;
         params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
         params_.strands = sw_.element_strand;
+        params_.strand_losers = std::any_of(sw_.element_strand.begin(), sw_.element_strand.end(), [](char c) { return c != 0; });
         rng_.seed(opt_.seed);
         stage_seconds_["prepare"] += seconds_since(t0);
     }
@@ -325,7 +327,7 @@ private:
                     }
                     add_element(*mesh, ch->source);
                     // A layered swatch's losers come back whole (KernelParams::layer_gap), not squeezed.
-                    if (is_squeezed(ch) && sw_.layered) ++report_.losers_kept;
+                    if (is_squeezed(ch) && (sw_.layered || quilt::is_strand_source(sw_, ch->source))) ++report_.losers_kept;
                     else if (is_squeezed(ch) || mesh == &ch->fallback) ++report_.elements_squeezed;
                     continue;
                 }
@@ -339,9 +341,49 @@ private:
             pending = std::move(refused);
         }
         for (const auto* ch : pending) {
+            if (ch->kind == Kind::Added && add_strand_pieces(ch->mesh, ch->source)) continue;
             if (ch->kind == Kind::Stitched) ++report_.stitch_failures;
             else if (ch->kind != Kind::Deformed && !is_squeezed(ch)) ++report_.collisions_avoided;
         }
+    }
+
+    /// Beyond the paper: a strand (knot work) that cannot go in whole goes in cut across itself
+    /// where it meets the output or comes closer to it than the swatch's clearance, as an
+    /// under-crossing of knot work stops short of the strand over it (quilt::strand_pieces): the
+    /// pieces at least quilt::kStrandPieceWidths of its widths long that then collide with nothing
+    /// and keep half the clearance (the cuts lie half of it beyond the faces too close).
+    std::vector<Mesh> clear_strand_pieces(const Mesh& m, int source) const {
+        if (!quilt::is_strand_source(sw_, source) || !(sw_.near_gap > 0.0)) return {};
+        const double g = sw_.near_gap;
+        std::vector<char> bad = collider_.colliding_faces(m);
+        const Box3 box = bounding_box(m);
+        const std::vector<int> around = elements_in_rect(box.min.x() - g, box.min.y() - g, box.max.x() + g, box.max.y() + g);
+        std::vector<const Mesh*> near;
+        for (int id : around) near.push_back(&elems_[static_cast<std::size_t>(id)].mesh);
+        const std::vector<char> close = quilt::faces_near(m, near, g);
+        for (std::size_t f = 0; f < m.faces.size(); ++f) bad[f] = static_cast<char>(bad[f] | close[f]);
+        quilt::ThreadCut cut;
+        cut.margin = 0.5 * g;
+        cut.min_widths = quilt::kStrandPieceWidths;
+        std::vector<Mesh> pieces;
+        for (Mesh& piece : quilt::strand_pieces(m, bad, cut)) {
+            if (collider_.collides(piece)) continue;
+            const Box3 pb = bounding_box(piece);
+            if (std::any_of(near.begin(), near.end(), [&](const Mesh* o) { return quilt::element_gap(piece, pb, *o, g) < 0.5 * g; })) continue;
+            pieces.push_back(std::move(piece));
+        }
+        return pieces;
+    }
+
+    /// Adds the pieces of strand `m` that clear the output (clear_strand_pieces); true when any went in.
+    bool add_strand_pieces(const Mesh& m, int source) {
+        bool any = false;
+        for (Mesh& piece : clear_strand_pieces(m, source)) {
+            add_element(piece, source);
+            ++report_.strand_pieces;
+            any = true;
+        }
+        return any;
     }
 
     /// A blob (genus-0 swatch element) added to the output keeps the swatch's clearance from the
@@ -416,6 +458,7 @@ private:
         quilt::Coverage cov(-reach, -reach, opt_.width + reach, opt_.height + reach, setup.pixel);
         for (const OutputElement& e : elems_)
             if (e.alive) cov.add(e.mesh);
+        std::vector<Mesh> cut_tries;  // strands `fits` cut to their pieces, told apart in `add`
         report_.bald_spots_filled += quilt::fill_spots(
             cov, setup, [&](const Vec2& c) { return c.x() >= 0 && c.y() >= 0 && c.x() <= opt_.width && c.y() <= opt_.height; },
             [&](const Vec2& c, double r) { return cov.area_density(c, r); },
@@ -427,8 +470,28 @@ private:
             },
             // A layered swatch's shape, and a strand, come unsqueezed (FillSetup::layered, Shape::whole):
             // they must keep the clearance themselves.
-            [&](const Mesh& m, int source) { return !collider_.collides(m) && ((!sw_.layered && !quilt::is_strand_source(sw_, source)) || keeps_gap(m, source)); },
-            [&](const Mesh& m, int source) { add_element(m, source); });
+            [&](Mesh& m, int source) {
+                if (!collider_.collides(m) && ((!sw_.layered && !quilt::is_strand_source(sw_, source)) || keeps_gap(m, source))) return true;
+                // A strand that does not fit whole may go in as its pieces that do, if they keep
+                // kFillPieceShare of it (clear_strand_pieces).
+                if (!quilt::is_strand_source(sw_, source)) return false;
+                const std::vector<Mesh> pieces = clear_strand_pieces(m, source);
+                double kept = 0.0;
+                for (const Mesh& p : pieces) kept += quilt::mesh_area(p);
+                if (pieces.empty() || kept < quilt::kFillPieceShare * quilt::mesh_area(m)) return false;
+                m = quilt::join_meshes(pieces);
+                cut_tries.push_back(m);
+                return true;
+            },
+            [&](const Mesh& m, int source) {
+                const std::vector<Mesh> parts = quilt::split_components(m);
+                const bool cut = std::any_of(cut_tries.begin(), cut_tries.end(), [&](const Mesh& c) { return c.vertices == m.vertices; });
+                cut_tries.clear();
+                for (const Mesh& p : parts) {
+                    add_element(p, source);
+                    report_.strand_pieces += cut;
+                }
+            });
         stage_seconds_["bald spots"] += seconds_since(t0);
     }
 

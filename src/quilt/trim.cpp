@@ -4,15 +4,22 @@
 #include "core/intersect.h"
 #include "meshquilt/analysis.h"
 #include "quilt/kernel.h"
+#include "quilt/swatch.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/clip.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <map>
+#include <queue>
+#include <utility>
 
 namespace meshquilt::quilt {
 
@@ -71,45 +78,241 @@ bool clip_span(const Mesh& m, int axis, double lo, double hi, std::vector<Mesh>*
         if (k != 3) return false;
         r.faces.push_back(t);
     }
-    int count = 0;
-    const std::vector<int> component = connected_components(r, &count);
-    out->assign(static_cast<std::size_t>(count), Mesh());
-    std::vector<int> local(r.vertices.size(), -1);
-    for (std::size_t f = 0; f < r.faces.size(); ++f) {
-        Mesh& piece = (*out)[static_cast<std::size_t>(component[f])];
-        Tri t{};
-        for (int k = 0; k < 3; ++k) {
-            int& l = local[static_cast<std::size_t>(r.faces[f][k])];
-            if (l < 0) {
-                l = static_cast<int>(piece.vertices.size());
-                piece.vertices.push_back(r.vertices[static_cast<std::size_t>(r.faces[f][k])]);
+    *out = split_components(r);
+    return true;
+}
+
+/// Shortest-path distances along the edges of `m` from vertex `from` (infinite where unreachable).
+std::vector<double> edge_distances(const std::vector<std::vector<std::pair<int, double>>>& adj, int from) {
+    std::vector<double> d(adj.size(), std::numeric_limits<double>::infinity());
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    d[static_cast<std::size_t>(from)] = 0.0;
+    queue.push({0.0, from});
+    while (!queue.empty()) {
+        const auto [dist, v] = queue.top();
+        queue.pop();
+        if (dist > d[static_cast<std::size_t>(v)]) continue;
+        for (const auto& [w, len] : adj[static_cast<std::size_t>(v)])
+            if (dist + len < d[static_cast<std::size_t>(w)]) {
+                d[static_cast<std::size_t>(w)] = dist + len;
+                queue.push({dist + len, w});
             }
-            t[k] = l;
+    }
+    return d;
+}
+
+std::size_t farthest(const std::vector<double>& d) {
+    std::size_t best = 0;
+    for (std::size_t v = 0; v < d.size(); ++v)
+        if (std::isfinite(d[v]) && (!std::isfinite(d[best]) || d[v] > d[best])) best = v;
+    return best;
+}
+
+/// How much farther than the median band the widest band of a strand's levels may reach from its
+/// centroid (lengths_along): a tube's bands are its cross-sections.
+constexpr double kMaxBandSpread = 2.0;
+
+/// Each vertex's length along strand `m` (see strand_pieces) in `t`, and the strand's width (area
+/// over twice its end-to-end length, as a flat tube's) in `width`. False when `m` is not one
+/// connected element with two distinct ends, branches (kMaxBandSpread) or the harmonic solve fails.
+bool lengths_along(const Mesh& m, std::vector<double>* t, double* width) {
+    const std::size_t n = m.vertices.size();
+    std::vector<std::vector<std::pair<int, double>>> adj(n);
+    std::vector<char> used(n, 0);
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            const int a = f[k], b = f[(k + 1) % 3];
+            adj[static_cast<std::size_t>(a)].push_back({b, (m.vertices[static_cast<std::size_t>(a)] - m.vertices[static_cast<std::size_t>(b)]).norm()});
+            used[static_cast<std::size_t>(a)] = 1;
         }
-        piece.faces.push_back(t);
+    const std::vector<double> d0 = edge_distances(adj, m.faces[0][0]);
+    for (std::size_t v = 0; v < n; ++v)
+        if (used[v] && !std::isfinite(d0[v])) return false;  // several components
+    const std::size_t a = farthest(d0);
+    const std::vector<double> da = edge_distances(adj, static_cast<int>(a));
+    const std::size_t b = farthest(da);
+    const std::vector<double> db = edge_distances(adj, static_cast<int>(b));
+    const double reach = da[b];
+    *width = mesh_area(m) / std::max(2.0 * reach, 1e-300);
+    const double end = 0.5 * *width;
+    if (!(reach > 4.0 * end)) return false;
+    // Dirichlet ends: 0 within `end` of one extreme vertex, 1 within it of the other.
+    std::vector<int> index(n, -1);
+    std::vector<double> fixed(n, 0.0);
+    int free_count = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!used[v]) continue;
+        const bool near_a = da[v] < end, near_b = db[v] < end;
+        if (near_a && near_b) return false;
+        if (near_a) fixed[v] = 0.0;
+        else if (near_b) fixed[v] = 1.0;
+        else index[v] = free_count++;
+    }
+    // Clamped cotangent weights keep the maximum principle (no level leaves the ends' range).
+    std::map<std::pair<int, int>, double> weight;
+    for (const Tri& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            const int i = f[k], j = f[(k + 1) % 3], o = f[(k + 2) % 3];
+            const Vec3 e1 = m.vertices[static_cast<std::size_t>(i)] - m.vertices[static_cast<std::size_t>(o)];
+            const Vec3 e2 = m.vertices[static_cast<std::size_t>(j)] - m.vertices[static_cast<std::size_t>(o)];
+            const double cot = e1.dot(e2) / std::max(e1.cross(e2).norm(), 1e-300);
+            weight[{std::min(i, j), std::max(i, j)}] += 0.5 * std::clamp(cot, 0.05, 20.0);
+        }
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(free_count);
+    for (const auto& [edge, w] : weight) {
+        const int i = edge.first, j = edge.second;
+        const int fi = index[static_cast<std::size_t>(i)], fj = index[static_cast<std::size_t>(j)];
+        if (fi >= 0) entries.emplace_back(fi, fi, w);
+        if (fj >= 0) entries.emplace_back(fj, fj, w);
+        if (fi >= 0 && fj >= 0) {
+            entries.emplace_back(fi, fj, -w);
+            entries.emplace_back(fj, fi, -w);
+        } else if (fi >= 0) {
+            rhs[fi] += w * fixed[static_cast<std::size_t>(j)];
+        } else if (fj >= 0) {
+            rhs[fj] += w * fixed[static_cast<std::size_t>(i)];
+        }
+    }
+    Eigen::SparseMatrix<double> lap(free_count, free_count);
+    lap.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(lap);
+    if (solver.info() != Eigen::Success) return false;
+    const Eigen::VectorXd x = solver.solve(rhs);
+    if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+    std::vector<double> s(n, 0.0);
+    for (std::size_t v = 0; v < n; ++v) s[v] = index[v] >= 0 ? std::clamp(x[index[v]], 0.0, 1.0) : fixed[v];
+    // Levels to lengths: the centroids of the vertices in each of `bins` bands of levels, joined.
+    const int bins = std::clamp(static_cast<int>(reach / (0.25 * *width)), 16, 512);
+    std::vector<Vec3> centre(static_cast<std::size_t>(bins), Vec3::Zero());
+    std::vector<int> count(static_cast<std::size_t>(bins), 0);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!used[v]) continue;
+        const auto k = static_cast<std::size_t>(std::min(bins - 1, static_cast<int>(s[v] * bins)));
+        centre[k] += m.vertices[v];
+        ++count[k];
+    }
+    // A tube's bands are its cross-sections, all about as wide. A branching element (a snowflake's
+    // arms, a star) is no strand to cut: the level of a junction also holds the side arms, whose
+    // values stay near it, and its band reaches far beyond the others.
+    std::vector<double> spread(static_cast<std::size_t>(bins), 0.0);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!used[v]) continue;
+        const auto k = static_cast<std::size_t>(std::min(bins - 1, static_cast<int>(s[v] * bins)));
+        spread[k] = std::max(spread[k], (m.vertices[v] - centre[k] / count[k]).norm());
+    }
+    std::vector<double> filled;
+    for (int k = 0; k < bins; ++k)
+        if (count[static_cast<std::size_t>(k)] > 0) filled.push_back(spread[static_cast<std::size_t>(k)]);
+    std::nth_element(filled.begin(), filled.begin() + static_cast<std::ptrdiff_t>(filled.size() / 2), filled.end());
+    const double typical = filled[filled.size() / 2];
+    if (*std::max_element(spread.begin(), spread.end()) > kMaxBandSpread * typical) return false;
+    std::vector<double> at, along;  // band middles (levels) and their lengths along the centre line
+    Vec3 last = Vec3::Zero();
+    for (int k = 0; k < bins; ++k) {
+        if (count[static_cast<std::size_t>(k)] == 0) continue;
+        const Vec3 c = centre[static_cast<std::size_t>(k)] / count[static_cast<std::size_t>(k)];
+        along.push_back(along.empty() ? 0.0 : along.back() + (c - last).norm());
+        at.push_back((k + 0.5) / bins);
+        last = c;
+    }
+    t->assign(n, 0.0);
+    for (std::size_t v = 0; v < n; ++v) {
+        const auto it = std::lower_bound(at.begin(), at.end(), s[v]);
+        if (it == at.begin()) (*t)[v] = along.front();
+        else if (it == at.end()) (*t)[v] = along.back();
+        else {
+            const auto k = static_cast<std::size_t>(it - at.begin());
+            const double u = (s[v] - at[k - 1]) / std::max(at[k] - at[k - 1], 1e-300);
+            (*t)[v] = along[k - 1] + u * (along[k] - along[k - 1]);
+        }
     }
     return true;
 }
 
-/// The spans along the axis of thread `m` (set in `axis`) left free by its faces flagged in `bad`,
-/// each widened by `margin`, in order.
-std::vector<std::pair<double, double>> free_spans(const Mesh& m, const std::vector<char>& bad, double margin, int* axis) {
-    const Box3 box = bounding_box(m);
-    *axis = box.size().x() >= box.size().y() ? 0 : 1;
-    // Spans blocked by flagged faces, merged.
+/// Keeps the part of closed mesh `m` where field `t` (per vertex) is above `level` (`above`) or
+/// below it, splitting the faces that straddle it, and closes each cut loop with a fan from its
+/// centroid. `level` must differ from every vertex's value. False when a cut loop is not simple.
+bool clip_level(Mesh& m, std::vector<double>& t, double level, bool above) {
+    auto inside = [&](int v) { return above ? t[static_cast<std::size_t>(v)] > level : t[static_cast<std::size_t>(v)] < level; };
+    std::map<std::pair<int, int>, int> split;
+    auto cut = [&](int a, int b) {
+        const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+        if (const auto it = split.find(key); it != split.end()) return it->second;
+        const double ta = t[static_cast<std::size_t>(a)], tb = t[static_cast<std::size_t>(b)];
+        const double u = (level - ta) / (tb - ta);
+        const int id = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(m.vertices[static_cast<std::size_t>(a)] + u * (m.vertices[static_cast<std::size_t>(b)] - m.vertices[static_cast<std::size_t>(a)]));
+        t.push_back(level);
+        split.emplace(key, id);
+        return id;
+    };
+    std::vector<Tri> faces;
+    for (const Tri& f : m.faces) {
+        const int in = inside(f[0]) + inside(f[1]) + inside(f[2]);
+        if (in == 3) faces.push_back(f);
+        if (in == 0 || in == 3) continue;
+        // Rotate so that f[r] is the odd vertex out (the one inside when in == 1, outside when 2).
+        int r = 0;
+        for (int k = 0; k < 3; ++k)
+            if (inside(f[k]) == (in == 1)) r = k;
+        const int i = f[r], j = f[(r + 1) % 3], k = f[(r + 2) % 3];
+        const int xij = cut(i, j), xki = cut(k, i);
+        if (in == 1) {
+            faces.push_back({i, xij, xki});
+        } else {
+            faces.push_back({xij, j, k});
+            faces.push_back({xij, k, xki});
+        }
+    }
+    m.faces = std::move(faces);
+    // Cap the cut loops: the original was closed, so every boundary edge is on the cut.
+    std::vector<std::vector<int>> loops;
+    if (!boundary_loops(m, &loops)) return false;
+    for (const std::vector<int>& loop : loops) {
+        Vec3 c = Vec3::Zero();
+        for (int u : loop) c += m.vertices[static_cast<std::size_t>(u)];
+        const int centre = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(c / static_cast<double>(loop.size()));
+        t.push_back(level);
+        for (std::size_t q = 0; q < loop.size(); ++q) m.faces.push_back({loop[(q + 1) % loop.size()], loop[q], centre});
+    }
+    return true;
+}
+
+/// The level in the widest gap between the sorted values `ts` whose middle lies in [lo, hi]; NaN
+/// when no gap's middle does.
+double widest_gap(const std::vector<double>& ts, double lo, double hi) {
+    double best = 0.0, level = std::numeric_limits<double>::quiet_NaN();
+    auto first = std::lower_bound(ts.begin(), ts.end(), lo);
+    if (first != ts.begin()) --first;
+    for (auto it = first; it + 1 != ts.end() && *it <= hi; ++it) {
+        const double mid = 0.5 * (*it + *(it + 1)), gap = *(it + 1) - *it;
+        if (mid >= lo && mid <= hi && gap > best) {
+            best = gap;
+            level = mid;
+        }
+    }
+    return level;
+}
+
+/// The spans of [t0, t1] of a per-vertex value `t` of `m` left free by its faces flagged in `bad`
+/// (each blocks the values its vertices span, widened by `margin`), in order.
+std::vector<std::pair<double, double>> free_values(const Mesh& m, const std::vector<double>& t, const std::vector<char>& bad, double margin,
+                                                   double t0, double t1) {
+    // Values blocked by flagged faces, merged.
     std::vector<std::pair<double, double>> blocked;
     for (std::size_t f = 0; f < m.faces.size(); ++f) {
         if (!bad[f]) continue;
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (int k = 0; k < 3; ++k) {
-            const double t = m.vertices[static_cast<std::size_t>(m.faces[f][k])][*axis];
-            lo = std::min(lo, t);
-            hi = std::max(hi, t);
+            lo = std::min(lo, t[static_cast<std::size_t>(m.faces[f][k])]);
+            hi = std::max(hi, t[static_cast<std::size_t>(m.faces[f][k])]);
         }
         blocked.emplace_back(lo - margin, hi + margin);
     }
     std::sort(blocked.begin(), blocked.end());
-    const double t0 = box.min[*axis], t1 = box.max[*axis];
     std::vector<std::pair<double, double>> free;
     double from = t0;
     for (const auto& [lo, hi] : blocked) {
@@ -118,6 +321,17 @@ std::vector<std::pair<double, double>> free_spans(const Mesh& m, const std::vect
     }
     if (from < t1) free.emplace_back(from, t1);
     return free;
+}
+
+/// The spans along the axis of thread `m` (set in `axis`) left free by its faces flagged in `bad`,
+/// each widened by `margin`, in order.
+std::vector<std::pair<double, double>> free_spans(const Mesh& m, const std::vector<char>& bad, double margin, int* axis) {
+    const Box3 box = bounding_box(m);
+    *axis = box.size().x() >= box.size().y() ? 0 : 1;
+    std::vector<double> t;
+    t.reserve(m.vertices.size());
+    for (const Vec3& v : m.vertices) t.push_back(v[*axis]);
+    return free_values(m, t, bad, margin, box.min[*axis], box.max[*axis]);
 }
 
 /// The lowest and highest heights of thread `m`'s vertices in each of `n` cells `cell` long from
@@ -293,6 +507,83 @@ Mesh woven(const Mesh& m, int along, const std::vector<const Mesh*>& crossing, d
         v.z() = target(b) + per_bin(squash, b) * (v.z() - own);
     }
     return out;
+}
+
+std::vector<Mesh> split_components(const Mesh& m) {
+    int count = 0;
+    const std::vector<int> component = connected_components(m, &count);
+    std::vector<Mesh> out(static_cast<std::size_t>(count));
+    std::vector<int> local(m.vertices.size(), -1);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+        Mesh& piece = out[static_cast<std::size_t>(component[f])];
+        Tri tri{};
+        for (int k = 0; k < 3; ++k) {
+            int& l = local[static_cast<std::size_t>(m.faces[f][k])];
+            if (l < 0) {
+                l = static_cast<int>(piece.vertices.size());
+                piece.vertices.push_back(m.vertices[static_cast<std::size_t>(m.faces[f][k])]);
+            }
+            tri[k] = l;
+        }
+        piece.faces.push_back(tri);
+    }
+    return out;
+}
+
+Mesh join_meshes(const std::vector<Mesh>& parts) {
+    Mesh joined;
+    for (const Mesh& p : parts) {
+        const int offset = static_cast<int>(joined.vertices.size());
+        joined.vertices.insert(joined.vertices.end(), p.vertices.begin(), p.vertices.end());
+        for (const Tri& t : p.faces) joined.faces.push_back(t + Tri::Constant(offset));
+    }
+    return joined;
+}
+
+std::vector<char> faces_near(const Mesh& m, const std::vector<const Mesh*>& others, double gap) {
+    const Box3 box = bounding_box(m);
+    std::vector<char> close(m.vertices.size(), 0);
+    for (const Mesh* o : others)
+        for (const Vec3& w : o->vertices) {
+            if (((box.min.array() - gap) > w.array()).any() || (w.array() > (box.max.array() + gap)).any()) continue;
+            for (std::size_t v = 0; v < m.vertices.size(); ++v)
+                if ((m.vertices[v] - w).squaredNorm() < gap * gap) close[v] = 1;
+        }
+    std::vector<char> out(m.faces.size(), 0);
+    for (std::size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) out[f] = static_cast<char>(out[f] | close[static_cast<std::size_t>(m.faces[f][k])]);
+    return out;
+}
+
+std::vector<Mesh> strand_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut) {
+    if (m.faces.empty() || bad.size() != m.faces.size()) return {};
+    if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return {m};
+    std::vector<double> t;
+    double width = 0.0;
+    if (!lengths_along(m, &t, &width)) return {};
+    std::vector<double> ts = t;
+    std::sort(ts.begin(), ts.end());
+    const double t0 = ts.front(), t1 = ts.back();
+    // Lengths blocked by flagged faces, widened by the margin; the free ones between them.
+    const std::vector<std::pair<double, double>> free = free_values(m, t, bad, cut.margin, t0, t1);
+    const double slack = 0.25 * width;  // how far a cut may move into its piece to pass between vertex rings
+    std::vector<Mesh> pieces;
+    const double min_length = std::max(cut.min_length, cut.min_widths * width);
+    for (const auto& [lo, hi] : free) {
+        if (hi - lo < min_length) continue;
+        const double a = lo > t0 ? widest_gap(ts, lo, lo + slack) : -std::numeric_limits<double>::infinity();
+        const double b = hi < t1 ? widest_gap(ts, hi - slack, hi) : std::numeric_limits<double>::infinity();
+        if (std::isnan(a) || std::isnan(b) || !(b - a >= min_length)) continue;
+        Mesh part = m;
+        std::vector<double> tp = t;
+        if (std::isfinite(a) && !clip_level(part, tp, a, true)) continue;
+        if (std::isfinite(b) && !clip_level(part, tp, b, false)) continue;
+        for (Mesh& piece : split_components(part)) {
+            if (!is_closed_oriented(piece) || count_self_intersections(piece, 1) > 0) continue;
+            pieces.push_back(std::move(piece));
+        }
+    }
+    return pieces;
 }
 
 }  // namespace meshquilt::quilt

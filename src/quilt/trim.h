@@ -15,6 +15,7 @@ namespace meshquilt::quilt {
 struct ThreadCut {
     double margin = 0.0;      ///< kept clear of the flagged faces along the thread, on each side
     double min_length = 0.0;  ///< shorter pieces are dropped
+    double min_widths = 0.0;  ///< strand_pieces: pieces shorter than this many of the strand's widths are dropped too
 };
 
 /// The pieces of closed thread `m` that keep clear of its faces flagged in `bad` (one flag per
@@ -27,6 +28,40 @@ struct ThreadCut {
 /// side in xy is below `cut.min_length`, are left out; a thread that intersects itself (outside
 /// the clip's precondition) gives none. Without any flagged face the result is `m` itself.
 std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut);
+
+/// Beyond the paper: the pieces of closed genus-0 strand `m` (a winding element, quilt::is_strand,
+/// or any tube-like element with two ends) that keep clear of its faces flagged in `bad`, cut
+/// across the strand itself rather than across an axis of the plane, as an under-crossing of knot
+/// work stops short of the strand over it. Position along the strand is a harmonic function (0 at
+/// one end, 1 at the other, clamped cotangent weights), whose level sets on a tube are its
+/// cross-sections; its values are turned into lengths along the strand's centre line (the
+/// centroids of the vertices between levels). Each flagged face blocks the length it covers,
+/// widened by `cut.margin` on each side; each free length of at least `cut.min_length` becomes a
+/// piece (and at least `cut.min_widths` widths long), cut at the level in the widest gap between vertex levels within a quarter of the
+/// strand's width of the cut (so a cut passes between two rings of a swept tube's vertices, not
+/// through one) and capped by a fan from the cut loop's centroid. Pieces that are not closed,
+/// oriented and free of self-intersections are left out. Without any flagged face the result is
+/// `m` itself; an element without two distinct ends (both ends' neighbourhoods meet), or one that
+/// branches (a band of levels reaching twice as far from its centroid as the median band: a star,
+/// a snowflake), gives none.
+std::vector<Mesh> strand_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut);
+
+/// The connected components of `m` (by faces), each with its own vertices, in the order of
+/// meshquilt::connected_components.
+std::vector<Mesh> split_components(const Mesh& m);
+
+/// `parts` in one mesh, in order (the inverse of split_components).
+Mesh join_meshes(const std::vector<Mesh>& parts);
+
+/// Per face of `m`: 1 when one of its vertices lies closer than `gap` to a vertex of one of `others`.
+std::vector<char> faces_near(const Mesh& m, const std::vector<const Mesh*>& others, double gap);
+
+/// Beyond the paper: a strand's piece (strand_pieces) shorter than this many of its widths is left
+/// out (a stub that short reads as debris, not as an under-crossing).
+inline constexpr double kStrandPieceWidths = 2.0;
+/// Beyond the paper: a strand that does not fit a bald spot whole fills it with its pieces that do
+/// (strand_pieces) when they keep at least this share of its area.
+inline constexpr double kFillPieceShare = 0.5;
 
 /// The longest span along the axis of thread `m` that its faces flagged in `bad`, widened by
 /// `margin`, leave free (as thread_pieces measures spans): no piece can be longer. The whole
