@@ -412,23 +412,28 @@ INSTANTIATE_TEST_SUITE_P(Swatches, SurfaceThreads, ::testing::Values("weave", "c
 // ---------------------------------------------------------------------------------------------
 
 // Knot work (swatches/knots.obj): strands, closed and genus 0 but several times longer than wide
-// (quilt::is_strand), are never squeezed or shrunk to fit, and fill bald spots whole. Before
-// (session 41), on the eight at scale 0.2: the report's region density 0.682-0.744, smallest element
-// 0.741 of its swatch element's size (squeezed and shrunk strands); after 0.773-0.812 (this test's
-// measure 0.754-0.833) and 0.858. The knots are not yet held to the 15% bar (docs/surface.md).
+// (quilt::is_strand), are never squeezed or shrunk to fit, and fill bald spots whole or as pieces.
+// Before (session 41), on the eight at scale 0.2: the report's region density 0.682-0.744, smallest
+// element 0.741 of its swatch element's size (squeezed and shrunk strands); after 0.773-0.812 (this
+// test's measure 0.754-0.833) and 0.858. Since session 42 a strand that does not go in whole (a new
+// one that meets the output, a merge's loser, one too long for a bald spot) goes in as its pieces cut
+// across it clear of what it crosses (quilt::strand_pieces), as an under-crossing of knot work stops
+// short: 0.819-0.848 (this test's measure 0.823-0.867). Pieces and stitched strands have any length and
+// are not measured against their swatch element's size; the whole ones measure 0.945-1.090.
 TEST(Surface, KnotStrandsGoOnWhole) {
     const SurfaceRun run = quilt(mq::read_mesh(surface_data_path("eight.obj")), mq::read_mesh(swatch_path("knots")), 0.2);
     expect_whole_and_disjoint(run);
     expect_no_torn_faces(run, 4.0);
-    // The report's sizes (strands straight enough to be threads, stitched longer, are left out).
-    EXPECT_GT(run.r.surface.elements_sized, run.r.report.elements * 9 / 10);
-    EXPECT_GE(run.r.surface.element_size_min, 0.8);
+    // The report's sizes of the whole strands (pieces, and strands stitched longer, are left out).
+    EXPECT_GT(run.r.surface.elements_sized, run.r.report.elements / 2);
+    EXPECT_GE(run.r.surface.element_size_min, 0.85);
     EXPECT_EQ(run.r.surface.elements_off_size, 0);
     EXPECT_EQ(run.r.report.elements_squeezed, 0);
     EXPECT_GT(run.r.report.bald_spots_filled, 0);
+    EXPECT_GT(run.r.report.strand_pieces, 100);
     const auto [lo, hi] = region_density(run);
     std::printf("eight + knots: region density %.3f - %.3f of the swatch's\n", lo, hi);
-    EXPECT_GE(lo, 0.74);
+    EXPECT_GE(lo, 0.8);
     EXPECT_LE(hi, 1.15);
 }
 

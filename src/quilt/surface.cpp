@@ -297,6 +297,7 @@ struct SurfElement {
     std::vector<int> base_faces;  ///< distinct base faces its vertices lie on
     Mesh embedded;
     std::vector<Vec3> centerline;  ///< rings (is_ring_source): the embedded ring's centre line (core/links.h)
+    bool cut = false;              ///< a strand cut (quilt::strand_pieces) or stitched to another length: its size is not measured
 };
 
 class SurfaceQuilter {
@@ -338,6 +339,7 @@ public:
         params_.layered = sw_.layered;
         params_.layer_gap = sw_.elements_disjoint && sw_.layered ? sw_.near_gap : 0.0;
         params_.strands = sw_.element_strand;
+        params_.strand_losers = std::any_of(sw_.element_strand.begin(), sw_.element_strand.end(), [](char c) { return c != 0; });
         rng_.seed(opt_.seed);
         stage_seconds_["prepare swatch"] += seconds_since(t0);
         t0 = Clock::now();
@@ -1892,6 +1894,26 @@ private:
         cov.cover_outside(ground);  // distances end at the patch's border
         std::vector<SurfacePoint> anchors;
         Mesh embedded;
+        // The whole element on the surface (fill_spots' `fits`).
+        auto whole_fits = [&](const Mesh& m, int source) {
+            double resize = 1.0;
+            if (!embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded, &resize)) return false;
+            // Resized for the surface, it keeps the clearance at that scale (see apply).
+            if (resize != 1.0 && !keeps_clearance(resized_in_frame(m, resize), source, standing_ptrs, nullptr, resize)) return false;
+            // A layered swatch's shape, and a strand, come unsqueezed (FillSetup::layered,
+            // Shape::whole): they keep the clearance themselves.
+            if (resize == 1.0 && (fill_.layered || quilt::is_strand_source(sw_, source)) && !keeps_clearance(m, source, standing_ptrs)) return false;
+            // On the surface it keeps kFillMinArea of its swatch element's area (where the map
+            // shrinks ground that the rescaled element cannot fit on, embed_sized keeps it as is).
+            const double want = mesh_area(sw_.elements[static_cast<std::size_t>(source)]) * scale_ * scale_ * local * local;
+            const double floor = fill_.area_floor * scale_ * scale_ * local * local;
+            if (mesh_area(embedded) < std::max(kFillMinArea * want, floor) || mesh_area(embedded) > kMaxElementSize * kMaxElementSize * want) return false;
+            return !collider_.collides(embedded) && count_self_intersections(embedded, 1) == 0;
+        };
+        auto place_piece = [&](const Mesh& m, int source, bool fresh, std::vector<SurfacePoint>* a, Mesh* e, double* resize) {
+            return embed_sized(m, source, fresh, flat, locator, hs, local, nullptr, a, e, resize);
+        };
+        std::vector<Mesh> cut_tries;  // strands `fits` cut to their pieces, told apart in `add`
         report_.bald_spots_filled += quilt::fill_spots(
             cov, fill_,
             [&](const Vec2& c) {
@@ -1912,22 +1934,41 @@ private:
                         out.push_back(hulls[k]);
                 return out;
             },
-            [&](const Mesh& m, int source) {
-                double resize = 1.0;
-                if (!embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded, &resize)) return false;
-                // Resized for the surface, it keeps the clearance at that scale (see apply).
-                if (resize != 1.0 && !keeps_clearance(resized_in_frame(m, resize), source, standing_ptrs, nullptr, resize)) return false;
-                // A layered swatch's shape, and a strand, come unsqueezed (FillSetup::layered,
-                // Shape::whole): they keep the clearance themselves.
-                if (resize == 1.0 && (fill_.layered || quilt::is_strand_source(sw_, source)) && !keeps_clearance(m, source, standing_ptrs)) return false;
-                // On the surface it keeps kFillMinArea of its swatch element's area (where the map
-                // shrinks ground that the rescaled element cannot fit on, embed_sized keeps it as is).
-                const double want = mesh_area(sw_.elements[static_cast<std::size_t>(source)]) * scale_ * scale_ * local * local;
-                const double floor = fill_.area_floor * scale_ * scale_ * local * local;
-                if (mesh_area(embedded) < std::max(kFillMinArea * want, floor) || mesh_area(embedded) > kMaxElementSize * kMaxElementSize * want) return false;
-                return !collider_.collides(embedded) && count_self_intersections(embedded, 1) == 0;
+            [&](Mesh& m, int source) {
+                if (whole_fits(m, source)) return true;
+                // A strand that does not fit whole may go in as its pieces that do (cut where it
+                // collides, folds or comes closer than the clearance), if they keep kFillPieceShare
+                // of it.
+                if (!quilt::is_strand_source(sw_, source) || !(sw_.near_gap > 0.0)) return false;
+                std::vector<SurfacePoint> a;
+                Mesh e;
+                if (!embed_sized(m, source, false, flat, locator, hs, local, nullptr, &a, &e)) return false;
+                std::vector<char> bad = collider_.colliding_faces(e);
+                if (count_self_intersections(e, 1) > 0) {
+                    const std::vector<char> folded = self_intersecting_faces(e);
+                    for (std::size_t f = 0; f < folded.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | folded[f]);
+                }
+                const std::vector<PieceFit> fits = clear_strand_pieces(m, source, std::move(bad), standing_ptrs, sw_.near_gap, place_piece);
+                double kept = 0.0;
+                for (const PieceFit& fit : fits) kept += mesh_area(fit.frame);
+                if (fits.empty() || kept < quilt::kFillPieceShare * mesh_area(m)) return false;
+                std::vector<Mesh> frames;
+                for (const PieceFit& fit : fits) frames.push_back(fit.frame);
+                m = quilt::join_meshes(frames);
+                cut_tries.push_back(m);
+                return true;
             },
             [&](const Mesh& m, int source) {
+                if (std::any_of(cut_tries.begin(), cut_tries.end(), [&](const Mesh& c) { return c.vertices == m.vertices; })) {
+                    cut_tries.clear();
+                    for (const Mesh& piece : quilt::split_components(m)) {
+                        if (!embed_sized(piece, source, false, flat, locator, hs, local, nullptr, &anchors, &embedded)) continue;
+                        add_element(std::move(anchors), piece.faces, std::move(embedded), source, true);
+                        stand(piece);
+                        ++report_.strand_pieces;
+                    }
+                    return;
+                }
                 // Embedded again: the last `fits` may have been a larger shape that did not fit.
                 embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded);
                 add_element(std::move(anchors), m.faces, std::move(embedded), source);
@@ -2805,13 +2846,17 @@ private:
                     if (kind != Kind::Added) kind = Kind::Replaced;  // an addition's fallback is the element squeezed
                 }
                 int source = ch->source;
+                // A strand stitched to another length, or a piece deformed, is cut (SurfElement::cut).
+                bool cut = false;
                 if (kind != Kind::Added) {
                     if (source < 0) source = elems_[static_cast<std::size_t>(ch->old_id)].source;
+                    cut = (kind == Kind::Stitched && quilt::is_strand_source(sw_, source)) ||
+                          (kind != Kind::Replaced && elems_[static_cast<std::size_t>(ch->old_id)].cut);
                     remove_element(ch->old_id);
                     if (kind == Kind::Stitched) ++report_.elements_stitched;
                     if (kind == Kind::Replaced) ++report_.elements_replaced;
                 }
-                add_element(std::move(*anchors), *faces, std::move(*embedded), source);
+                add_element(std::move(*anchors), *faces, std::move(*embedded), source, cut);
                 if (kind == Kind::Added && ch >= plan.changes.data() + plan.squeezed_from && ch < plan.changes.data() + plan.squeezed_from + plan.squeezed)
                     ++report_.losers_kept;
                 applied.push_back(faces == &ch->fallback.faces ? &ch->fallback : &ch->mesh);
@@ -2831,6 +2876,14 @@ private:
                 if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh) &&
                     trim_thread(c.change->mesh, c.change->source, c.embedded, c.resize, place, &pieces_applied, c.folded))
                     continue;
+                // A strand (knot work), new or a merge's loser, goes in as its pieces cut across it
+                // clear of what it meets (trim_strand), as an under-crossing stops short.
+                if (c.change->kind == Kind::Added && quilt::is_strand_source(sw_, c.change->source)) {
+                    std::vector<const Mesh*> near = around;
+                    near.insert(near.end(), applied.begin(), applied.end());
+                    for (const Mesh& m : pieces_applied) near.push_back(&m);
+                    if (trim_strand(c.change->mesh, c.change->source, c.embedded, c.resize, place, near, &pieces_applied, c.folded)) continue;
+                }
                 // A stitch of two threads that collides, and whose new partner whole collides too:
                 // the old thread stays, the partner's parts clear of it and of the rest go in.
                 if (c.change->kind == Kind::Stitched && !c.fallback.faces.empty() && quilt::is_elongated(c.change->fallback) &&
@@ -2919,6 +2972,54 @@ private:
         return true;
     }
 
+    /// The pieces of strand `frame` (a frame mesh of swatch element `source`, at its size on the
+    /// surface; quilt::strand_pieces) clear of its faces flagged `bad` and of the faces that come
+    /// closer than the clearance `gap` to any of `standing` (frame meshes): cut half the clearance
+    /// beyond them, at least quilt::kStrandPieceWidths strand widths long, each embedded again by
+    /// `place` (no resizing), colliding with nothing, not folding, not torn, and keeping half the
+    /// clearance. Nothing is added.
+    template <class Place>
+    std::vector<PieceFit> clear_strand_pieces(const Mesh& frame, int source, std::vector<char> bad, const std::vector<const Mesh*>& standing,
+                                              double gap, const Place& place) const {
+        const std::vector<char> close = quilt::faces_near(frame, standing, gap);
+        for (std::size_t f = 0; f < close.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | close[f]);
+        std::vector<PieceFit> out;
+        if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return out;
+        quilt::ThreadCut cut;
+        cut.margin = 0.5 * gap;
+        cut.min_widths = quilt::kStrandPieceWidths;
+        for (Mesh& piece : quilt::strand_pieces(frame, bad, cut)) {
+            PieceFit fit;
+            if (!place(piece, source, false, &fit.anchors, &fit.embedded, nullptr)) continue;
+            if (!stretched_faces(piece, fit.embedded).empty() || collider_.collides(fit.embedded) || count_self_intersections(fit.embedded, 1) > 0) continue;
+            const Box3 pb = bounding_box(piece);
+            if (std::any_of(standing.begin(), standing.end(), [&](const Mesh* o) { return quilt::element_gap(piece, pb, *o, gap) < 0.5 * gap; })) continue;
+            fit.frame = std::move(piece);
+            out.push_back(std::move(fit));
+        }
+        return out;
+    }
+
+    /// Adds the pieces of new strand `mesh` (frame mesh of swatch element `source`, embedded as
+    /// `embedded`, resized by `resize` in the frame) that stay clear of the output and of `standing`
+    /// (clear_strand_pieces): cut where its faces collide, are `folded`, or come closer than the
+    /// clearance. Adds the pieces' frame meshes to `frames`; true when any went in.
+    template <class Place>
+    bool trim_strand(const Mesh& mesh, int source, const Mesh& embedded, double resize, const Place& place, const std::vector<const Mesh*>& standing,
+                     std::deque<Mesh>* frames, const std::vector<char>& folded = {}) {
+        if (!(sw_.near_gap > 0.0)) return false;
+        std::vector<char> bad = collider_.colliding_faces(embedded);
+        for (std::size_t f = 0; f < folded.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | folded[f]);
+        std::vector<PieceFit> fits = clear_strand_pieces(resized_in_frame(mesh, resize), source, std::move(bad), standing, resize * sw_.near_gap, place);
+        if (fits.empty()) return false;
+        for (PieceFit& fit : fits) {
+            add_element(std::move(fit.anchors), fit.frame.faces, std::move(fit.embedded), source, true);
+            frames->push_back(std::move(fit.frame));
+            ++report_.strand_pieces;
+        }
+        return true;
+    }
+
     /// Does frame mesh `m` of swatch element `source` keep the swatch's clearance (near_gap, vertex
     /// to vertex) from each of `standing` other than `self`? Rings (genus >= 1) interlock and threads
     /// cross: they are not held to it.
@@ -2996,8 +3097,9 @@ private:
         return false;
     }
 
-    void add_element(std::vector<SurfacePoint> anchors, const std::vector<Tri>& faces, Mesh embedded, int source) {
+    void add_element(std::vector<SurfacePoint> anchors, const std::vector<Tri>& faces, Mesh embedded, int source, bool cut = false) {
         SurfElement e;
+        e.cut = cut;
         e.anchors = std::move(anchors);
         e.faces = faces;
         e.source = source;
@@ -3120,6 +3222,7 @@ private:
             const SurfElement& e = elems_[static_cast<std::size_t>(kept[k])];
             final_meshes.push_back(&e.embedded);
             result.source_element.push_back(e.source);
+            result_cut_.push_back(e.cut);
             result.anchors.insert(result.anchors.end(), e.anchors.begin(), e.anchors.end());
             if (quilt::is_closed_oriented(e.embedded)) ++report_.elements_closed;
         }
@@ -3349,8 +3452,9 @@ private:
     /// Each element's size as a share of its swatch element's at the run's scale and the field's
     /// local scale on its first vertex's base face (size_share, as the stage's size floor
     /// measures it): the smallest and largest, and how many lie outside a factor of
-    /// kReportedSizeFactor. Threads (cut and stitched to any length) and a run with --height (the
-    /// elements' thickness is not the swatch's) are not measured.
+    /// kReportedSizeFactor. Threads (cut and stitched to any length), strands cut or stitched
+    /// (SurfElement::cut; whole strands are measured) and a run with --height (the elements'
+    /// thickness is not the swatch's) are not measured.
     void element_sizes(const SurfaceQuiltResult& result) {
         const std::size_t n = result.source_element.size();
         std::vector<double> area(n, 0.0);
@@ -3362,7 +3466,7 @@ private:
         }
         double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
         for (std::size_t e = 0; e < n; ++e) {
-            if (face[e] < 0) continue;
+            if (face[e] < 0 || (e < result_cut_.size() && result_cut_[e])) continue;
             const double size = size_share(area[e], result.source_element[e], local_scale_[static_cast<std::size_t>(face[e])]);
             if (size < 0.0) continue;
             lo = std::min(lo, size);
@@ -3396,6 +3500,7 @@ private:
     }
     SurfaceQuiltOptions opt_;
     quilt::SwatchData sw_;
+    std::vector<char> result_cut_;  ///< per result element: a strand's piece (SurfElement::cut)
     TriangleIndex index_;
     quilt::KernelParams params_;
     quilt::FillSetup fill_;
