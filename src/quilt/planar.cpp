@@ -351,8 +351,9 @@ private:
     /// where it meets the output or comes closer to it than the swatch's clearance, as an
     /// under-crossing of knot work stops short of the strand over it (quilt::strand_pieces): the
     /// pieces at least quilt::kStrandPieceWidths of its widths long that then collide with nothing
-    /// and keep half the clearance (the cuts lie half of it beyond the faces too close).
-    std::vector<Mesh> clear_strand_pieces(const Mesh& m, int source) const {
+    /// and keep half the clearance (the cuts lie half of it beyond the faces too close). None when
+    /// the faces left unflagged hold less than `min_share` of its area.
+    std::vector<Mesh> clear_strand_pieces(const Mesh& m, int source, double min_share = 0.0) const {
         if (!quilt::is_strand_source(sw_, source) || !(sw_.near_gap > 0.0)) return {};
         const double g = sw_.near_gap;
         std::vector<char> bad = collider_.colliding_faces(m);
@@ -362,6 +363,7 @@ private:
         for (int id : around) near.push_back(&elems_[static_cast<std::size_t>(id)].mesh);
         const std::vector<char> close = quilt::faces_near(m, near, g);
         for (std::size_t f = 0; f < m.faces.size(); ++f) bad[f] = static_cast<char>(bad[f] | close[f]);
+        if (min_share > 0.0 && quilt::unflagged_area(m, bad) < min_share * quilt::mesh_area(m)) return {};
         quilt::ThreadCut cut;
         cut.margin = 0.5 * g;
         cut.min_widths = quilt::kStrandPieceWidths;
@@ -475,7 +477,7 @@ private:
                 // A strand that does not fit whole may go in as its pieces that do, if they keep
                 // kFillPieceShare of it (clear_strand_pieces).
                 if (!quilt::is_strand_source(sw_, source)) return false;
-                const std::vector<Mesh> pieces = clear_strand_pieces(m, source);
+                const std::vector<Mesh> pieces = clear_strand_pieces(m, source, quilt::kFillPieceShare);
                 double kept = 0.0;
                 for (const Mesh& p : pieces) kept += quilt::mesh_area(p);
                 if (pieces.empty() || kept < quilt::kFillPieceShare * quilt::mesh_area(m)) return false;

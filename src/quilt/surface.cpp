@@ -1948,7 +1948,12 @@ private:
                     const std::vector<char> folded = self_intersecting_faces(e);
                     for (std::size_t f = 0; f < folded.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | folded[f]);
                 }
-                const std::vector<PieceFit> fits = clear_strand_pieces(m, source, std::move(bad), standing_ptrs, sw_.near_gap, place_piece);
+                // Only the standing elements near it can flag its faces.
+                std::vector<const Mesh*> near;
+                const Box3 mb = bounding_box(m);
+                for (std::size_t k = 0; k < boxes.size(); ++k)
+                    if (mb.overlaps(boxes[k], sw_.near_gap)) near.push_back(standing_ptrs[k]);
+                const std::vector<PieceFit> fits = clear_strand_pieces(m, source, std::move(bad), near, sw_.near_gap, place_piece, quilt::kFillPieceShare);
                 double kept = 0.0;
                 for (const PieceFit& fit : fits) kept += mesh_area(fit.frame);
                 if (fits.empty() || kept < quilt::kFillPieceShare * mesh_area(m)) return false;
@@ -2977,14 +2982,16 @@ private:
     /// closer than the clearance `gap` to any of `standing` (frame meshes): cut half the clearance
     /// beyond them, at least quilt::kStrandPieceWidths strand widths long, each embedded again by
     /// `place` (no resizing), colliding with nothing, not folding, not torn, and keeping half the
-    /// clearance. Nothing is added.
+    /// clearance. None when the faces left unflagged hold less than `min_share` of its area (no
+    /// pieces could hold more). Nothing is added.
     template <class Place>
     std::vector<PieceFit> clear_strand_pieces(const Mesh& frame, int source, std::vector<char> bad, const std::vector<const Mesh*>& standing,
-                                              double gap, const Place& place) const {
+                                              double gap, const Place& place, double min_share = 0.0) const {
         const std::vector<char> close = quilt::faces_near(frame, standing, gap);
         for (std::size_t f = 0; f < close.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | close[f]);
         std::vector<PieceFit> out;
         if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return out;
+        if (min_share > 0.0 && quilt::unflagged_area(frame, bad) < min_share * mesh_area(frame)) return out;
         quilt::ThreadCut cut;
         cut.margin = 0.5 * gap;
         cut.min_widths = quilt::kStrandPieceWidths;

@@ -2,6 +2,7 @@
 #include "quilt/trim.h"
 
 #include "core/intersect.h"
+#include "core/triangle_index.h"
 #include "meshquilt/analysis.h"
 #include "quilt/kernel.h"
 #include "quilt/swatch.h"
@@ -553,6 +554,13 @@ std::vector<char> faces_near(const Mesh& m, const std::vector<const Mesh*>& othe
     for (std::size_t f = 0; f < m.faces.size(); ++f)
         for (int k = 0; k < 3; ++k) out[f] = static_cast<char>(out[f] | close[static_cast<std::size_t>(m.faces[f][k])]);
     return out;
+}
+
+double unflagged_area(const Mesh& m, const std::vector<char>& flags) {
+    double a = 0.0;
+    for (std::size_t f = 0; f < m.faces.size() && f < flags.size(); ++f)
+        if (!flags[f]) a += face_area(m, f);
+    return a;
 }
 
 std::vector<Mesh> strand_pieces(const Mesh& m, const std::vector<char>& bad, const ThreadCut& cut) {

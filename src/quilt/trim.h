@@ -56,6 +56,9 @@ Mesh join_meshes(const std::vector<Mesh>& parts);
 /// Per face of `m`: 1 when one of its vertices lies closer than `gap` to a vertex of one of `others`.
 std::vector<char> faces_near(const Mesh& m, const std::vector<const Mesh*>& others, double gap);
 
+/// The area of the faces of `m` not flagged in `flags` (one per face).
+double unflagged_area(const Mesh& m, const std::vector<char>& flags);
+
 /// Beyond the paper: a strand's piece (strand_pieces) shorter than this many of its widths is left
 /// out (a stub that short reads as debris, not as an under-crossing).
 inline constexpr double kStrandPieceWidths = 2.0;
