@@ -246,7 +246,7 @@ TEST(PlanarKnots, StrandsAreNeverSqueezed) {
 // long for a bald spot) go in as their pieces cut across the strand clear of what they cross, as an
 // under-crossing of knot work stops short of the strand over it: more of the ground is covered
 // (density 0.810 / 0.804 -> 0.842 / 0.837 of the swatch's, seeds 1 and 2), and every piece is whole
-// and at least quilt::kStrandPieceWidths strand widths long. (quilt::strand_pieces keeps them clear
+// and at least quilt::kStrandPieceGirths strand girths long. (quilt::strand_pieces keeps them clear
 // of what they cross: tests/test_trim.cpp; no two elements intersect: PlanarQuilt.)
 TEST(PlanarKnots, StrandsCutWhereTheyCross) {
     const QuiltRun run = quilt("knots", 1);
@@ -255,9 +255,9 @@ TEST(PlanarKnots, StrandsCutWhereTheyCross) {
     EXPECT_GE(r.report.output_density, 0.83 * r.report.swatch_density);
     const auto swatch = mq::test::split_elements(run.swatch, mq::connected_components(run.swatch));
     const auto out = mq::test::split_elements(r.mesh, r.element_of_face);
-    // The shortest piece the cut keeps, in the swatch's strand widths (0.32): along its centre line
-    // at least quilt::kStrandPieceWidths, so its footprint's box is at least 2 / pi of that long
-    // (bent into a half circle).
+    // The shortest cut or stitched element: a piece is at least quilt::kStrandPieceGirths girths
+    // (0.54 each) along its centre line; this bound, in the swatch's strand widths (0.32), also
+    // holds the short strands that stitches leave.
     double shortest = 1e300;
     int cut = 0;
     for (std::size_t e = 0; e < out.size(); ++e) {
@@ -268,7 +268,7 @@ TEST(PlanarKnots, StrandsCutWhereTheyCross) {
         shortest = std::min(shortest, std::max(d.x(), d.y()));
     }
     EXPECT_GE(cut, r.report.strand_pieces / 2);
-    EXPECT_GT(shortest, 0.6 * mq::quilt::kStrandPieceWidths * 0.32);
+    EXPECT_GT(shortest, 0.6 * mq::quilt::kStrandPieceGirths * 0.32);
 }
 
 // Overlapping scales (swatches/scales.obj: each scale's top lies under the next row's tips) overlap

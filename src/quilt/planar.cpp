@@ -350,7 +350,7 @@ private:
     /// Beyond the paper: a strand (knot work) that cannot go in whole goes in cut across itself
     /// where it meets the output or comes closer to it than the swatch's clearance, as an
     /// under-crossing of knot work stops short of the strand over it (quilt::strand_pieces): the
-    /// pieces at least quilt::kStrandPieceWidths of its widths long that then collide with nothing
+    /// pieces at least quilt::kStrandPieceGirths of its girths long that then collide with nothing
     /// and keep half the clearance (the cuts lie half of it beyond the faces too close). None when
     /// the faces left unflagged hold less than `min_share` of its area.
     std::vector<Mesh> clear_strand_pieces(const Mesh& m, int source, double min_share = 0.0) const {
@@ -366,7 +366,7 @@ private:
         if (min_share > 0.0 && quilt::unflagged_area(m, bad) < min_share * quilt::mesh_area(m)) return {};
         quilt::ThreadCut cut;
         cut.margin = 0.5 * g;
-        cut.min_widths = quilt::kStrandPieceWidths;
+        cut.min_girths = quilt::kStrandPieceGirths;
         std::vector<Mesh> pieces;
         for (Mesh& piece : quilt::strand_pieces(m, bad, cut)) {
             if (collider_.collides(piece)) continue;

@@ -2980,7 +2980,7 @@ private:
     /// The pieces of strand `frame` (a frame mesh of swatch element `source`, at its size on the
     /// surface; quilt::strand_pieces) clear of its faces flagged `bad` and of the faces that come
     /// closer than the clearance `gap` to any of `standing` (frame meshes): cut half the clearance
-    /// beyond them, at least quilt::kStrandPieceWidths strand widths long, each embedded again by
+    /// beyond them, at least quilt::kStrandPieceGirths strand girths long, each embedded again by
     /// `place` (no resizing), colliding with nothing, not folding, not torn, and keeping half the
     /// clearance. None when the faces left unflagged hold less than `min_share` of its area (no
     /// pieces could hold more). Nothing is added.
@@ -2994,7 +2994,7 @@ private:
         if (min_share > 0.0 && quilt::unflagged_area(frame, bad) < min_share * mesh_area(frame)) return out;
         quilt::ThreadCut cut;
         cut.margin = 0.5 * gap;
-        cut.min_widths = quilt::kStrandPieceWidths;
+        cut.min_girths = quilt::kStrandPieceGirths;
         for (Mesh& piece : quilt::strand_pieces(frame, bad, cut)) {
             PieceFit fit;
             if (!place(piece, source, false, &fit.anchors, &fit.embedded, nullptr)) continue;

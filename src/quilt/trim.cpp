@@ -114,10 +114,10 @@ std::size_t farthest(const std::vector<double>& d) {
 /// centroid (lengths_along): a tube's bands are its cross-sections.
 constexpr double kMaxBandSpread = 2.0;
 
-/// Each vertex's length along strand `m` (see strand_pieces) in `t`, and the strand's width (area
-/// over twice its end-to-end length, as a flat tube's) in `width`. False when `m` is not one
+/// Each vertex's length along strand `m` (see strand_pieces) in `t`, and the strand's girth (area
+/// over twice its end-to-end length: half its cross-section's perimeter) in `girth`. False when `m` is not one
 /// connected element with two distinct ends, branches (kMaxBandSpread) or the harmonic solve fails.
-bool lengths_along(const Mesh& m, std::vector<double>* t, double* width) {
+bool lengths_along(const Mesh& m, std::vector<double>* t, double* girth) {
     const std::size_t n = m.vertices.size();
     std::vector<std::vector<std::pair<int, double>>> adj(n);
     std::vector<char> used(n, 0);
@@ -135,8 +135,8 @@ bool lengths_along(const Mesh& m, std::vector<double>* t, double* width) {
     const std::size_t b = farthest(da);
     const std::vector<double> db = edge_distances(adj, static_cast<int>(b));
     const double reach = da[b];
-    *width = mesh_area(m) / std::max(2.0 * reach, 1e-300);
-    const double end = 0.5 * *width;
+    *girth = mesh_area(m) / std::max(2.0 * reach, 1e-300);
+    const double end = 0.5 * *girth;
     if (!(reach > 4.0 * end)) return false;
     // Dirichlet ends: 0 within `end` of one extreme vertex, 1 within it of the other.
     std::vector<int> index(n, -1);
@@ -185,7 +185,7 @@ bool lengths_along(const Mesh& m, std::vector<double>* t, double* width) {
     std::vector<double> s(n, 0.0);
     for (std::size_t v = 0; v < n; ++v) s[v] = index[v] >= 0 ? std::clamp(x[index[v]], 0.0, 1.0) : fixed[v];
     // Levels to lengths: the centroids of the vertices in each of `bins` bands of levels, joined.
-    const int bins = std::clamp(static_cast<int>(reach / (0.25 * *width)), 16, 512);
+    const int bins = std::clamp(static_cast<int>(reach / (0.25 * *girth)), 16, 512);
     std::vector<Vec3> centre(static_cast<std::size_t>(bins), Vec3::Zero());
     std::vector<int> count(static_cast<std::size_t>(bins), 0);
     for (std::size_t v = 0; v < n; ++v) {
@@ -567,16 +567,16 @@ std::vector<Mesh> strand_pieces(const Mesh& m, const std::vector<char>& bad, con
     if (m.faces.empty() || bad.size() != m.faces.size()) return {};
     if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return {m};
     std::vector<double> t;
-    double width = 0.0;
-    if (!lengths_along(m, &t, &width)) return {};
+    double girth = 0.0;
+    if (!lengths_along(m, &t, &girth)) return {};
     std::vector<double> ts = t;
     std::sort(ts.begin(), ts.end());
     const double t0 = ts.front(), t1 = ts.back();
     // Lengths blocked by flagged faces, widened by the margin; the free ones between them.
     const std::vector<std::pair<double, double>> free = free_values(m, t, bad, cut.margin, t0, t1);
-    const double slack = 0.25 * width;  // how far a cut may move into its piece to pass between vertex rings
+    const double slack = 0.25 * girth;  // how far a cut may move into its piece to pass between vertex rings
     std::vector<Mesh> pieces;
-    const double min_length = std::max(cut.min_length, cut.min_widths * width);
+    const double min_length = std::max(cut.min_length, cut.min_girths * girth);
     for (const auto& [lo, hi] : free) {
         if (hi - lo < min_length) continue;
         const double a = lo > t0 ? widest_gap(ts, lo, lo + slack) : -std::numeric_limits<double>::infinity();

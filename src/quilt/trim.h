@@ -15,7 +15,7 @@ namespace meshquilt::quilt {
 struct ThreadCut {
     double margin = 0.0;      ///< kept clear of the flagged faces along the thread, on each side
     double min_length = 0.0;  ///< shorter pieces are dropped
-    double min_widths = 0.0;  ///< strand_pieces: pieces shorter than this many of the strand's widths are dropped too
+    double min_girths = 0.0;  ///< strand_pieces: pieces shorter than this many of the strand's girths are dropped too
 };
 
 /// The pieces of closed thread `m` that keep clear of its faces flagged in `bad` (one flag per
@@ -37,8 +37,9 @@ std::vector<Mesh> thread_pieces(const Mesh& m, const std::vector<char>& bad, con
 /// cross-sections; its values are turned into lengths along the strand's centre line (the
 /// centroids of the vertices between levels). Each flagged face blocks the length it covers,
 /// widened by `cut.margin` on each side; each free length of at least `cut.min_length` becomes a
-/// piece (and at least `cut.min_widths` widths long), cut at the level in the widest gap between vertex levels within a quarter of the
-/// strand's width of the cut (so a cut passes between two rings of a swept tube's vertices, not
+/// piece (and at least `cut.min_girths` girths long: a strand's girth is its area over twice its
+/// end-to-end length, half its cross-section's perimeter, width plus height for a flat strand), cut
+/// at the level in the widest gap between vertex levels within a quarter of a girth of the cut (so a cut passes between two rings of a swept tube's vertices, not
 /// through one) and capped by a fan from the cut loop's centroid. Pieces that are not closed,
 /// oriented and free of self-intersections are left out. Without any flagged face the result is
 /// `m` itself; an element without two distinct ends (both ends' neighbourhoods meet), or one that
@@ -59,9 +60,10 @@ std::vector<char> faces_near(const Mesh& m, const std::vector<const Mesh*>& othe
 /// The area of the faces of `m` not flagged in `flags` (one per face).
 double unflagged_area(const Mesh& m, const std::vector<char>& flags);
 
-/// Beyond the paper: a strand's piece (strand_pieces) shorter than this many of its widths is left
-/// out (a stub that short reads as debris, not as an under-crossing).
-inline constexpr double kStrandPieceWidths = 2.0;
+/// Beyond the paper: a strand's piece (strand_pieces) shorter than this many of its girths (width
+/// plus height: 0.54 for the bundled knots, so 1.08, over three of their widths) is left out (a
+/// stub that short reads as debris, not as an under-crossing).
+inline constexpr double kStrandPieceGirths = 2.0;
 /// Beyond the paper: a strand that does not fit a bald spot whole fills it with its pieces that do
 /// (strand_pieces) when they keep at least this share of its area.
 inline constexpr double kFillPieceShare = 0.5;
