@@ -1895,9 +1895,12 @@ private:
         std::vector<SurfacePoint> anchors;
         Mesh embedded;
         // The whole element on the surface (fill_spots' `fits`).
+        double whole_resize = 0.0;  // the last whole_fits' embedding's resize (0: it failed)
         auto whole_fits = [&](const Mesh& m, int source) {
             double resize = 1.0;
+            whole_resize = 0.0;
             if (!embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded, &resize)) return false;
+            whole_resize = resize;
             // Resized for the surface, it keeps the clearance at that scale (see apply).
             if (resize != 1.0 && !keeps_clearance(resized_in_frame(m, resize), source, standing_ptrs, nullptr, resize)) return false;
             // A layered swatch's shape, and a strand, come unsqueezed (FillSetup::layered,
@@ -1940,9 +1943,12 @@ private:
                 // collides, folds or comes closer than the clearance), if they keep kFillPieceShare
                 // of it.
                 if (!quilt::is_strand_source(sw_, source) || !(sw_.near_gap > 0.0)) return false;
+                // The whole strand as it lies on the surface at its size: whole_fits' embedding
+                // when it was not resized, else embedded again without resizing.
                 std::vector<SurfacePoint> a;
                 Mesh e;
-                if (!embed_sized(m, source, false, flat, locator, hs, local, nullptr, &a, &e)) return false;
+                if (whole_resize == 1.0) e = embedded;
+                else if (!embed_sized(m, source, false, flat, locator, hs, local, nullptr, &a, &e)) return false;
                 std::vector<char> bad = collider_.colliding_faces(e);
                 if (count_self_intersections(e, 1) > 0) {
                     const std::vector<char> folded = self_intersecting_faces(e);
