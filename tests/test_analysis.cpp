@@ -508,6 +508,17 @@ TEST(Validate, InconsistentOrientationFailsOrIsRepaired) {
     EXPECT_EQ(r.mesh.faces, shapes::cube().faces);  // the one odd face turned back; the majority kept
     EXPECT_TRUE(contains(r.repairs, "m.obj: reoriented 1 face to fix 3 edges with inconsistent orientation")) << joined(r.repairs);
     EXPECT_TRUE(rejects(moebius(), {"m.obj: 1 edge with inconsistent orientation", "not orientable"}, true));
+    // `reorient` alone (a base): the same faces, said as a warning, and nothing else repaired.
+    ValidationOptions base;
+    base.reorient = true;
+    Mesh with_duplicate = m;
+    with_duplicate.vertices.push_back(with_duplicate.vertices[0]);
+    const ValidationResult b = validate(with_duplicate, "m.obj", base);
+    EXPECT_EQ(b.mesh.faces, shapes::cube().faces);
+    EXPECT_TRUE(b.repairs.empty()) << joined(b.repairs);
+    EXPECT_TRUE(contains(b.warnings, "m.obj: reoriented 1 face to fix 3 edges with inconsistent orientation")) << joined(b.warnings);
+    EXPECT_EQ(b.mesh.vertices.size(), with_duplicate.vertices.size());  // no other repair: the duplicate stays
+    EXPECT_THROW(validate(moebius(), "m.obj", base), InvalidInput);
 }
 
 TEST(Validate, InsideOutElementWarnsOrIsFlipped) {

@@ -71,6 +71,9 @@ struct ValidationOptions {
     /// vertices; each repair is reported in ValidationResult::repairs. Non-manifold edges stay
     /// errors: no repair of them is safe.
     bool repair = false;
+    /// Make face orientation consistent even without `repair` (a base: the decoration goes on a
+    /// copy), with a warning instead of an error; a non-orientable mesh stays an error.
+    bool reorient = false;
     bool require_thin_axis = false;  ///< a swatch must have one
 };
 

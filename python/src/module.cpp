@@ -383,6 +383,7 @@ py::tuple validate_py(const py::object& vertices, const py::object& faces, const
     const Mesh m = mesh_from(vertices, faces, name);
     ValidationOptions vo;
     vo.repair = repair;
+    vo.reorient = !swatch;  // as decorate() checks a base
     vo.require_thin_axis = swatch;
     std::optional<ValidationResult> checked;
     {

@@ -416,6 +416,18 @@ def test_validate_checks_and_repairs_like_decorate(base, rivets):
     with pytest.raises(ValueError, match="thin axis"):
         meshquilt.validate(*cube(), swatch=True)
     meshquilt.validate(*rivets, swatch=True)
+    # A base whose faces disagree about their side is reoriented with a warning (to the side most
+    # of them face: the eight again); a swatch so written is refused.
+    partly = bf.copy()
+    partly[::3] = partly[::3][:, [0, 2, 1]]
+    v, f, repairs, warnings = meshquilt.validate(bv, partly, name="eight.obj")
+    np.testing.assert_array_equal(f, bf)
+    assert repairs == [] and len(warnings) == 1 and warnings[0].startswith("eight.obj: reoriented"), warnings
+    sv, sf = rivets
+    flipped = sf.copy()
+    flipped[::3] = flipped[::3][:, [0, 2, 1]]
+    with pytest.raises(ValueError, match="inconsistent orientation"):
+        meshquilt.validate(sv, flipped, name="rivets.obj", swatch=True)
 
 
 def test_flat_swatch_is_named_as_such(base):

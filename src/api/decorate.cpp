@@ -25,6 +25,7 @@ void warn(DecorateResult& out, const Reporter& reporter, std::string text) {
 Mesh checked(const Mesh& mesh, const std::string& name, bool repair, bool swatch, const Reporter& reporter, DecorateResult& out) {
     ValidationOptions vo;
     vo.repair = repair;
+    vo.reorient = !swatch;  // a base's faces are reoriented on the synthesis's copy, with a warning
     vo.require_thin_axis = swatch;
     ValidationResult v = validate(mesh, name, vo);
     for (auto& r : v.repairs) out.repairs.push_back(std::move(r));  // each starts with the file's name

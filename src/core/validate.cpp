@@ -158,12 +158,16 @@ ValidationResult validate(const Mesh& input, const std::string& name, const Vali
         topo = compute_topology(mesh);
     }
     if (topo.inconsistent_edges > 0) {
-        if (!options.repair) error(topo.inconsistent_phrase() + "; pass --repair to reorient the faces");
+        if (!options.repair && !options.reorient) error(topo.inconsistent_phrase() + "; pass --repair to reorient the faces");
         const Reorientation r = reorient(mesh);
         if (r.non_orientable_face >= 0)
             error(topo.inconsistent_phrase() + "; the surface is not orientable (like a Moebius strip) near face " +
                   std::to_string(r.non_orientable_face) + ", so no orientation of its faces agrees");
-        repaired("reoriented " + count_of(r.flipped, "face", "faces") + " to fix " + topo.inconsistent_phrase());
+        const std::string what = "reoriented " + count_of(r.flipped, "face", "faces") + " to fix " + topo.inconsistent_phrase();
+        if (options.repair)
+            repaired(what);
+        else
+            result.warnings.push_back(name + ": " + what + " (each connected piece keeps the side most of its faces face)");
         topo = compute_topology(mesh);
     }
     const std::vector<int> inside_out = topo.inside_out_elements();
