@@ -16,29 +16,16 @@
 
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <map>
 #include <string>
 
 namespace mq = meshquilt;
 using meshquilt::bench::peak_rss_mb;
+using meshquilt::bench::shared_mesh;
 
 namespace {
 
-const mq::Mesh* mesh(const std::string& name) {
-    static std::map<std::string, mq::Mesh> cache;
-    auto it = cache.find(name);
-    if (it != cache.end()) return &it->second;
-    const char* env = std::getenv("MESHQUILT_MESHES");
-    const std::string dir = env ? env : std::string(MQ_SOURCE_DIR) + "/../shared/data/meshes";
-    const std::string path = dir + "/" + name + ".obj";
-    if (!std::filesystem::exists(path)) return nullptr;
-    return &cache.emplace(name, mq::read_mesh(path)).first->second;
-}
-
 void shell_row(benchmark::State& state, const char* name, double height_fraction) {
-    const mq::Mesh* base = mesh(name);
+    const mq::Mesh* base = shared_mesh(name);
     if (!base) {
         state.SkipWithError((std::string(name) + ".obj not found (set MESHQUILT_MESHES)").c_str());
         return;
