@@ -179,6 +179,10 @@ constexpr double kTrimMargin = 0.1;
 /// and 0.725, but the eight's test region fell to 0.840; at 16 faces of 4.7 times the swatch's
 /// largest were left.)
 constexpr double kMaxFaceStretch = 4.0;
+/// An element (not a thread or strand) with a face larger than this many times the swatch's
+/// largest face, on the surface at the run's scale, is torn (torn): the bound the surface tests hold
+/// every output to.
+constexpr double kTornFace = 4.0;
 constexpr double kTrimMinLength = 3.2;
 // A new thread reaching off its patch is cut kTrimEdgeMargin of its width inside the patch.
 constexpr double kTrimEdgeMargin = 0.25;
@@ -331,6 +335,7 @@ public:
         for (const Mesh& e : sw_.elements) {
             const Box3 b = bounding_box(e);
             element_diag_ = std::max(element_diag_, std::hypot(b.size().x(), b.size().y()));
+            for (std::size_t f = 0; f < e.faces.size(); ++f) largest_face_ = std::max(largest_face_, face_area(e, f));
         }
         params_.metric.lambda = opt_.lambda;
         params_.metric.unit = sw_.mean_edge;
@@ -1362,20 +1367,35 @@ private:
         if (resize) *resize = 1.0;
         if (!to_surface(m, flat, locator, hs, anchors, reach)) return false;
         *embedded = embed_element(*anchors, m.faces);
-        if (!fresh || source < 0 || height_scale_ > 0) return true;
+        if (!fresh || source < 0 || height_scale_ > 0) return !torn(*embedded, source, local);
         // What the map did to this element's area (not what deformation did: that was the kernel's
         // choice, bounded there).
         const double ratio = size_ratio(m, *anchors, *embedded, local);
         const double drift = keeps_lattice(source) ? kLatticeSizeDrift : kMaxSizeDrift;
-        if (ratio < drift && ratio > 1.0 / drift) return true;
+        if (ratio < drift && ratio > 1.0 / drift) return !torn(*embedded, source, local);
         const double f = 1.0 / std::sqrt(ratio);
         const Mesh fixed = resized_in_frame(m, f);
         std::vector<SurfacePoint> a2;
-        if (!to_surface(fixed, flat, locator, hs, &a2)) return true;
+        if (!to_surface(fixed, flat, locator, hs, &a2)) return !torn(*embedded, source, local);
         *anchors = std::move(a2);
         *embedded = embed_element(*anchors, m.faces);
         if (resize) *resize = f;
-        return true;
+        return !torn(*embedded, source, local);
+    }
+
+    /// Beyond the paper: an element whose embedding pulled a face out to more than kTornFace times
+    /// the swatch's largest face (at the run's scale and the field's local scale) was torn by the
+    /// map, a face spanned across a crease or joining parts that the map puts apart; it does not go
+    /// in there (embed_sized fails). Threads and strands are cut where they tear instead
+    /// (stretched_faces), and a run with --height stretches every element in its thickness.
+    bool torn(const Mesh& embedded, int source, double local) const {
+        if (source < 0 || height_scale_ > 0 || quilt::is_elongated(sw_.elements[static_cast<std::size_t>(source)]) ||
+            quilt::is_strand_source(sw_, source))
+            return false;
+        const double limit = kTornFace * largest_face_ * scale_ * scale_ * local * local;
+        for (std::size_t f = 0; f < embedded.faces.size(); ++f)
+            if (face_area(embedded, f) > limit) return true;
+        return false;
     }
 
     /// An output element near a patch (on one of its faces) in the patch's frame: whole, or the
@@ -3529,6 +3549,7 @@ private:
     int sx_ = 0, sy_ = 0, k_ = 0;
     int symmetry_ = 4;
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
+    double largest_face_ = 0.0;  ///< the swatch's largest face area, swatch units (torn)
     std::vector<std::pair<Vec3, Vec3>> mend_failed_;  ///< slots tried in vain (mend_frame): base point, direction
     std::map<std::array<long, 3>, std::vector<std::size_t>> mend_failed_grid_;
     std::map<std::pair<int, int>, Mesh> variant_;                   ///< ring_variant
