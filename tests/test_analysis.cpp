@@ -519,6 +519,10 @@ TEST(Validate, InconsistentOrientationFailsOrIsRepaired) {
     EXPECT_TRUE(contains(b.warnings, "m.obj: reoriented 1 face to fix 3 edges with inconsistent orientation")) << joined(b.warnings);
     EXPECT_EQ(b.mesh.vertices.size(), with_duplicate.vertices.size());  // no other repair: the duplicate stays
     EXPECT_THROW(validate(moebius(), "m.obj", base), InvalidInput);
+    // An inside-out closed piece of a base is left to the surface stage (it flips it and says so).
+    const ValidationResult inside_out = validate(shapes::flipped(shapes::cube()), "m.obj", base);
+    EXPECT_TRUE(inside_out.warnings.empty()) << joined(inside_out.warnings);
+    EXPECT_EQ(inside_out.mesh.faces, shapes::flipped(shapes::cube()).faces);
 }
 
 TEST(Validate, InsideOutElementWarnsOrIsFlipped) {

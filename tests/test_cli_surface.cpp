@@ -191,6 +191,9 @@ TEST_F(CliSurface, InsideOutBaseIsDecoratedWithAWarning) {
     const Outcome o = run((dir / "flipped.obj").string() + " " + swatch + " --scale 0.3 -o " + (dir / "o.obj").string());
     EXPECT_EQ(o.code, 0) << o.err;
     EXPECT_NE(o.err.find("facing inwards"), std::string::npos) << o.err;
+    // Said once, by the stage that flips it: no advice to pass --repair for what is already done.
+    EXPECT_EQ(o.err.find("inside out"), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find("--repair"), std::string::npos) << o.err;
 }
 
 TEST_F(CliSurface, InconsistentlyOrientedBaseIsReorientedWithAWarning) {

@@ -72,7 +72,8 @@ struct ValidationOptions {
     /// errors: no repair of them is safe.
     bool repair = false;
     /// Make face orientation consistent even without `repair` (a base: the decoration goes on a
-    /// copy), with a warning instead of an error; a non-orientable mesh stays an error.
+    /// copy), with a warning instead of an error; a non-orientable mesh stays an error. Inside-out
+    /// closed pieces are then not warned about: the surface stage flips them and says so.
     bool reorient = false;
     bool require_thin_axis = false;  ///< a swatch must have one
 };
