@@ -279,6 +279,9 @@ TEST_P(SurfaceBases, CoversEveryTriangleWithWholeDisjointElementsAtTheSwatchDens
     const SurfaceRun run = quilt(c.make(), swatch, c.scale);
     expect_whole_and_disjoint(run);
     expect_no_torn_faces(run, 4.0);
+    // The eight's chain mail meets placements that the map tears (6 at seed 1, faces up to 1.25
+    // times the bound): the stage refuses them, so the output above holds none.
+    if (c.name == "eight_chainmail") EXPECT_GT(run.r.surface.elements_torn, 0);
     if (c.sizes) {
         expect_element_sizes(run, 1.5, 0.7);
     } else {

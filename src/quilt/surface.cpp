@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -1394,7 +1395,10 @@ private:
             return false;
         const double limit = kTornFace * largest_face_ * scale_ * scale_ * local * local;
         for (std::size_t f = 0; f < embedded.faces.size(); ++f)
-            if (face_area(embedded, f) > limit) return true;
+            if (face_area(embedded, f) > limit) {
+                ++torn_tries_;  // the report's elements_torn (embed_sized runs in parallel in apply)
+                return true;
+            }
         return false;
     }
 
@@ -3284,6 +3288,7 @@ private:
         result.report = r;
         surface_.swatch_density = r.swatch_density;
         for (char p : processed_) surface_.base_faces_processed += p;
+        surface_.elements_torn = static_cast<int>(torn_tries_.load());
         region_density(result);
         element_sizes(result);
         // A swatch too large for the base's features: every placement folded, collided or fell off
@@ -3550,6 +3555,7 @@ private:
     int symmetry_ = 4;
     double element_diag_ = 0.0;  ///< largest swatch element's footprint diagonal, swatch units
     double largest_face_ = 0.0;  ///< the swatch's largest face area, swatch units (torn)
+    mutable std::atomic<long> torn_tries_{0};  ///< tries torn refused
     std::vector<std::pair<Vec3, Vec3>> mend_failed_;  ///< slots tried in vain (mend_frame): base point, direction
     std::map<std::array<long, 3>, std::vector<std::size_t>> mend_failed_grid_;
     std::map<std::pair<int, int>, Mesh> variant_;                   ///< ring_variant
