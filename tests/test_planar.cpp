@@ -303,6 +303,32 @@ TEST(PlanarScales, LayeredScalesStayWhole) {
 }
 
 
+// A swatch of open elements (caps modelled as one sheet, as a leaf or a shingle often is): the
+// parts of two such elements hold each element's own rim among their boundary loops, so a stitch
+// would zip rim to rim. None is joined: every output element stays open, at its swatch element's
+// size (before session 44, 11 of the 68 caps of this run were zipped into closed, crumpled blobs;
+// tests/data/planar/README.md).
+TEST(PlanarOpenElements, AreNeverJoinedRimToRim) {
+    const Mesh swatch = mq::normalize_swatch(mq::read_mesh(std::string(MQ_TEST_DATA_DIR) + "/planar/open_caps.obj"));
+    ASSERT_GT(mq::analyse(swatch).boundary_edges, 0);
+    mq::PlanarQuiltOptions o;
+    o.width = o.height = 20.0;
+    o.seed = 1;
+    const mq::QuiltResult r = mq::quilt_plane(swatch, o);
+    EXPECT_EQ(r.report.elements_stitched, 0);
+    EXPECT_EQ(r.report.elements_closed, 0);
+    const double cap_area = area(mq::test::split_elements(swatch, mq::connected_components(swatch)).front());
+    int counted = 0;
+    for (const Mesh& e : mq::test::split_elements(r.mesh, r.element_of_face)) {
+        ++counted;
+        EXPECT_GT(mq::analyse(e).boundary_edges, 0);
+        const double size = std::sqrt(area(e) / cap_area);
+        EXPECT_GT(size, 1.0 / 1.5);
+        EXPECT_LT(size, 1.5);
+    }
+    EXPECT_GT(counted, 50);
+}
+
 // A swatch that is one connected net (a grid of bars, genus 64) cannot be merged where two
 // placements overlap (the cuts through its many bars do not pair up), so each placement's copy
 // stands whole or not at all and the output is sparse (0.44-0.68 of the swatch's density, seeds

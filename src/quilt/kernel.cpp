@@ -804,6 +804,12 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
         *result = c_out;
         return true;
     }
+    // Beyond the paper: open elements (a cap, a leaf, a ribbon modelled as one sheet) are not
+    // joined. Their cut parts hold the element's own rim among their boundary loops, and zipping
+    // the loops of two such parts joined rim to rim: the only stitches of open elements that
+    // passed the closed-result test below were such crumpled blobs. The element that covers more
+    // of its own ground stays whole instead (plan_patch), as when a stitch fails.
+    if (!is_closed_oriented(c_out) || !is_closed_oriented(c_in)) return fail("an open element is not stitched");
     CutResult cut_out = cut_element(c_out, idx_in, anchor_out, anchor_in, params, nullptr);
     CutResult cut_in = cut_element(c_in, idx_out, anchor_in, anchor_out, params, &cut_out.keep);
     const std::vector<char> sel_out = anchored_components(c_out, cut_out);
