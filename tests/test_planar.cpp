@@ -307,7 +307,7 @@ TEST(PlanarScales, LayeredScalesStayWhole) {
 // parts of two such elements hold each element's own rim among their boundary loops, so a stitch
 // would zip rim to rim. None is joined: every output element stays open, at its swatch element's
 // size (before session 44, 11 of the 68 caps of this run were zipped into closed, crumpled blobs;
-// tests/data/planar/README.md).
+// tests/data/planar/README.md), and bald spots take caps as they take blobs.
 TEST(PlanarOpenElements, AreNeverJoinedRimToRim) {
     const Mesh swatch = mq::normalize_swatch(mq::read_mesh(std::string(MQ_TEST_DATA_DIR) + "/planar/open_caps.obj"));
     ASSERT_GT(mq::analyse(swatch).boundary_edges, 0);
@@ -317,6 +317,9 @@ TEST(PlanarOpenElements, AreNeverJoinedRimToRim) {
     const mq::QuiltResult r = mq::quilt_plane(swatch, o);
     EXPECT_EQ(r.report.elements_stitched, 0);
     EXPECT_EQ(r.report.elements_closed, 0);
+    // Bald spots are filled with caps as with blobs (0.75 of the swatch's density without).
+    EXPECT_GT(r.report.bald_spots_filled, 0);
+    EXPECT_GE(r.report.output_density, 0.9 * r.report.swatch_density);
     const double cap_area = area(mq::test::split_elements(swatch, mq::connected_components(swatch)).front());
     int counted = 0;
     for (const Mesh& e : mq::test::split_elements(r.mesh, r.element_of_face)) {

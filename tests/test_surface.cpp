@@ -440,6 +440,26 @@ TEST(Surface, KnotStrandsGoOnWhole) {
     EXPECT_LE(hi, 1.15);
 }
 
+// A swatch of open caps, each one sheet (tests/data/planar/open_caps.obj): none is joined rim to
+// rim into a closed blob (17 of 375 on this run before session 44), none meets another, bald spots
+// take caps as they take blobs, and every region holds the swatch's density within 15%.
+TEST(Surface, OpenElementsStayOpenAndFillBaldSpots) {
+    const Mesh caps = mq::read_mesh(std::string(MQ_TEST_DATA_DIR) + "/planar/open_caps.obj");
+    const SurfaceRun run = quilt(mq::read_mesh(surface_data_path("eight.obj")), caps, 0.2);
+    const auto& r = run.r;
+    EXPECT_EQ(r.surface.base_faces_processed, r.surface.base_faces);
+    EXPECT_GT(r.report.elements, 300);
+    EXPECT_EQ(r.report.elements_closed, 0);
+    EXPECT_EQ(r.report.elements_stitched, 0);
+    EXPECT_GT(r.report.bald_spots_filled, 0);
+    EXPECT_TRUE(mq::test::no_element_intersections(r.mesh, r.element_of_face));
+    expect_element_sizes(run, 1.5, 0.7);
+    const auto [lo, hi] = region_density(run);
+    std::printf("eight + open caps: region density %.3f - %.3f of the swatch's\n", lo, hi);
+    EXPECT_GE(lo, 0.85);
+    EXPECT_LE(hi, 1.15);
+}
+
 TEST(Surface, OpenBaseIsCoveredAndElementsStayOnIt) {
     const Mesh base = shapes::open_cylinder(1.0, 3.0, 48, 24);
     const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("pebbles")), 0.2);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 
 namespace meshquilt::quilt {
 
@@ -172,6 +173,33 @@ bool is_strand_source(const SwatchData& sw, int source) {
     return source >= 0 && static_cast<std::size_t>(source) < sw.element_strand.size() && sw.element_strand[static_cast<std::size_t>(source)] != 0;
 }
 
+namespace {
+
+/// Is `m` one open sheet with one rim and no handles (Euler characteristic 1: a cap, a leaf, a
+/// scale modelled as a single surface)?
+bool is_open_disc(const Mesh& m) {
+    std::set<std::pair<int, int>> edges;
+    std::set<int> used;
+    for (const Tri& t : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            used.insert(t[k]);
+            edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+        }
+    return static_cast<long>(used.size()) - static_cast<long>(edges.size()) + static_cast<long>(m.faces.size()) == 1;
+}
+
+/// May swatch element `source` fill a bald spot alone? A blob (is_blob_source), and since session 44
+/// an open compact sheet (is_open_disc: neither a thread nor a strand), which is no more bound to
+/// its neighbours than a blob is.
+bool is_fill_source(const SwatchData& sw, int source) {
+    if (is_blob_source(sw, source)) return true;
+    if (source < 0 || static_cast<std::size_t>(source) >= sw.elements.size()) return false;
+    const auto s = static_cast<std::size_t>(source);
+    return !sw.element_closed[s] && !is_elongated(sw.elements[s]) && !is_strand_source(sw, source) && is_open_disc(sw.elements[s]);
+}
+
+}  // namespace
+
 FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, double min_area, bool projected) {
     FillSetup s;
     s.projected = projected;
@@ -182,7 +210,7 @@ FillSetup prepare_fill(const SwatchData& sw, double min_pixel, double sparse, do
     double narrowest = 1e300;
     for (std::size_t e = 0; e < sw.elements.size(); ++e) {
         const Mesh& m = sw.elements[e];
-        if (!is_blob_source(sw, static_cast<int>(e))) continue;
+        if (!is_fill_source(sw, static_cast<int>(e))) continue;
         const Vec3 c = area_centroid(m);
         const Vec3 size = bounding_box(m).size();
         s.smallest_blob_area = s.smallest_blob_area > 0.0 ? std::min(s.smallest_blob_area, mesh_area(m)) : mesh_area(m);

@@ -91,7 +91,8 @@ struct FillSetup {
         double swatch_area = 0.0;  ///< of the swatch element at full size
         bool whole = false;        ///< a strand (SwatchData::element_strand): goes in unsqueezed or not at all
     };
-    /// The swatch's blobs at full size and at kFillScale, and its strands no longer than most (half
+    /// The swatch's blobs and open compact sheets (a cap, a leaf: one rim, no handles) at full size
+    /// and at kFillScale, and its strands no longer than most (half
     /// their diagonal at most the median strand's or the largest blob's) at full size only, largest
     /// first.
     std::vector<Shape> shapes;
@@ -119,9 +120,10 @@ struct FillSetup {
     bool layered = false;
 };
 
-/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) or its elements
-/// intersect (a layered swatch's shapes go in without squeezes: FillSetup::layered); `min_pixel` bounds the raster's size for large outputs, `sparse`, `min_area` and
-/// `projected` see FillSetup.
+/// Empty (no shapes) when the swatch has no blob (closed, genus 0, not a thread) nor open compact
+/// sheet, or its elements intersect (a layered swatch's shapes go in without squeezes:
+/// FillSetup::layered); `min_pixel` bounds the raster's size for large outputs, `sparse`,
+/// `min_area` and `projected` see FillSetup.
 FillSetup prepare_fill(const SwatchData& swatch, double min_pixel, double sparse, double min_area, bool projected = false);
 
 /// The filling loop (see FillSetup): while the widest empty disc of `cov` centred where `may_centre`
