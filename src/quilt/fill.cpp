@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "quilt/fill.h"
 
+#include "meshquilt/analysis.h"
 #include "quilt/kernel.h"
 #include "quilt/swatch.h"
 
@@ -8,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <set>
 
 namespace meshquilt::quilt {
 
@@ -175,27 +175,16 @@ bool is_strand_source(const SwatchData& sw, int source) {
 
 namespace {
 
-/// Is `m` one open sheet with one rim and no handles (Euler characteristic 1: a cap, a leaf, a
-/// scale modelled as a single surface)?
-bool is_open_disc(const Mesh& m) {
-    std::set<std::pair<int, int>> edges;
-    std::set<int> used;
-    for (const Tri& t : m.faces)
-        for (int k = 0; k < 3; ++k) {
-            used.insert(t[k]);
-            edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
-        }
-    return static_cast<long>(used.size()) - static_cast<long>(edges.size()) + static_cast<long>(m.faces.size()) == 1;
-}
-
 /// May swatch element `source` fill a bald spot alone? A blob (is_blob_source), and since session 44
-/// an open compact sheet (is_open_disc: neither a thread nor a strand), which is no more bound to
-/// its neighbours than a blob is.
+/// an open compact sheet with one rim and no handles (a cap, a leaf, a scale modelled as a single
+/// surface), neither a thread nor a strand, which is no more bound to its neighbours than a blob is.
 bool is_fill_source(const SwatchData& sw, int source) {
     if (is_blob_source(sw, source)) return true;
     if (source < 0 || static_cast<std::size_t>(source) >= sw.elements.size()) return false;
     const auto s = static_cast<std::size_t>(source);
-    return !sw.element_closed[s] && !is_elongated(sw.elements[s]) && !is_strand_source(sw, source) && is_open_disc(sw.elements[s]);
+    if (sw.element_closed[s] || is_elongated(sw.elements[s]) || is_strand_source(sw, source)) return false;
+    const MeshAnalysis a = analyse(sw.elements[s]);
+    return a.elements.size() == 1 && a.boundary_loops == 1 && a.genus == 0;
 }
 
 }  // namespace
