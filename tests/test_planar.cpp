@@ -14,12 +14,14 @@
 #include "support/checkers.h"
 #include "support/paths.h"
 #include "support/shapes.h"
+#include "support/shapes_isect.h"
 #include "support/expect_error.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -307,7 +309,9 @@ TEST(PlanarScales, LayeredScalesStayWhole) {
 // parts of two such elements hold each element's own rim among their boundary loops, so a stitch
 // would zip rim to rim. None is joined: every output element stays open, at its swatch element's
 // size (before session 44, 11 of the 68 caps of this run were zipped into closed, crumpled blobs;
-// tests/data/planar/README.md), and bald spots take caps as they take blobs.
+// tests/data/planar/README.md). Bald spots take caps as they take blobs; since session 45 this
+// lattice of caps leaves none (keeps_gap's slack: PlanarLattice below), so the filler is asked
+// directly whether it offers them.
 TEST(PlanarOpenElements, AreNeverJoinedRimToRim) {
     const Mesh swatch = mq::normalize_swatch(mq::read_mesh(std::string(MQ_TEST_DATA_DIR) + "/planar/open_caps.obj"));
     ASSERT_GT(mq::analyse(swatch).boundary_edges, 0);
@@ -317,8 +321,10 @@ TEST(PlanarOpenElements, AreNeverJoinedRimToRim) {
     const mq::QuiltResult r = mq::quilt_plane(swatch, o);
     EXPECT_EQ(r.report.elements_stitched, 0);
     EXPECT_EQ(r.report.elements_closed, 0);
-    // Bald spots are filled with caps as with blobs (0.75 of the swatch's density without).
-    EXPECT_GT(r.report.bald_spots_filled, 0);
+    // Bald spots are filled with caps as with blobs (before session 45 22 were, and the density
+    // was 0.75 of the swatch's without them).
+    const mq::quilt::FillSetup fill = mq::quilt::prepare_fill(mq::quilt::prepare_swatch(swatch), 0.01, 0.9, 0.4);
+    EXPECT_FALSE(fill.shapes.empty());
     EXPECT_GE(r.report.output_density, 0.9 * r.report.swatch_density);
     const double cap_area = area(mq::test::split_elements(swatch, mq::connected_components(swatch)).front());
     int counted = 0;
@@ -332,19 +338,73 @@ TEST(PlanarOpenElements, AreNeverJoinedRimToRim) {
     EXPECT_GT(counted, 50);
 }
 
-// A swatch that is one connected net (a grid of bars, genus 64) cannot be merged where two
-// placements overlap (the cuts through its many bars do not pair up), so each placement's copy
-// stands whole or not at all and the output is sparse (0.44-0.68 of the swatch's density, seeds
-// 1-3). That is a known limit (docs/planar.md); what is tested is that it is not silent.
+// A swatch whose elements stand on a regular lattice (5 x 5 spheres 2 apart, so every gap between
+// neighbours is the swatch's clearance itself) quilts into that lattice: every site inside the
+// output holds an element and no element inside it stands off the lattice. Before session 45 the
+// clearance test (keeps_gap) refused about half of the new spheres at random, since a copy placed
+// a whole lattice step away measured a hair closer than the clearance, and the bald spots left were
+// filled off the lattice: 17-34 of the 64 inner sites empty, 46-86 elements off it (seeds 1-3).
+TEST(PlanarLattice, ARegularGridQuiltsIntoTheSameGrid) {
+    std::vector<Mesh> spheres;
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) spheres.push_back(mq::test::isect::icosphere(0.6, 2, Vec3(2.0 * i + 1.0, 2.0 * j + 1.0, 0.0)));
+    const Mesh swatch = mq::normalize_swatch(mq::test::isect::combine(spheres).mesh);
+    const double pitch = 2.0, size = 20.0;
+    for (const std::uint64_t seed : {1, 2, 3}) {
+        mq::PlanarQuiltOptions o;
+        o.width = o.height = size;
+        o.seed = seed;
+        const mq::QuiltResult r = mq::quilt_plane(swatch, o);
+        std::vector<Eigen::Vector2d> centres;
+        std::complex<double> sx = 0.0, sy = 0.0;  // the lattice's offset: circular means of the centres
+        for (const Mesh& e : mq::test::split_elements(r.mesh, r.element_of_face)) {
+            const Vec3 c = centroid(e);
+            centres.emplace_back(c.x(), c.y());
+            sx += std::polar(1.0, 2.0 * M_PI * c.x() / pitch);
+            sy += std::polar(1.0, 2.0 * M_PI * c.y() / pitch);
+        }
+        const Eigen::Vector2d offset(std::arg(sx) * pitch / (2.0 * M_PI), std::arg(sy) * pitch / (2.0 * M_PI));
+        auto inner = [&](const Eigen::Vector2d& p) { return p.x() >= pitch && p.y() >= pitch && p.x() <= size - pitch && p.y() <= size - pitch; };
+        int inner_sites = 0, empty = 0, off = 0;
+        for (double x = offset.x() - pitch * std::floor(offset.x() / pitch); x <= size; x += pitch)
+            for (double y = offset.y() - pitch * std::floor(offset.y() / pitch); y <= size; y += pitch) {
+                const Eigen::Vector2d site(x, y);
+                if (!inner(site)) continue;
+                ++inner_sites;
+                if (std::none_of(centres.begin(), centres.end(), [&](const Eigen::Vector2d& c) { return (c - site).norm() < 0.1 * pitch; })) ++empty;
+            }
+        for (const Eigen::Vector2d& c : centres) {
+            if (!inner(c)) continue;
+            const Eigen::Vector2d d = c - offset;
+            const Eigen::Vector2d off_site(d.x() - pitch * std::round(d.x() / pitch), d.y() - pitch * std::round(d.y() / pitch));
+            if (off_site.norm() > 0.05 * pitch) ++off;
+        }
+        EXPECT_GE(inner_sites, 49) << "seed " << seed;
+        EXPECT_EQ(empty, 0) << "of " << inner_sites << " inner sites, seed " << seed;
+        EXPECT_EQ(off, 0) << "inner elements off the lattice, seed " << seed;
+    }
+}
+
+// A swatch that is one connected net (a grid of bars, genus 64, gently warped so that it is no
+// lattice) cannot be merged where two placements overlap (the cuts through its many bars do not
+// pair up), so each placement's copy stands whole or not at all and the output is sparse. That is a
+// known limit (docs/planar.md); what is tested is that it is not silent. (The unwarped grid, a
+// lattice, is placed whole a pitch apart since session 45's exact refinement: 0.81, 0.44 and 0.81
+// of the density at seeds 1-3, against 0.44-0.68 before; the warped one 0, 0.60 and 0.36.)
 TEST(PlanarQuiltWarnings, ASparseOutputSaysSoAndWhy) {
-    const Mesh net = mq::test::shapes::grid_net(8, 1.25, 0.25, 0.3, 0.125);
+    Mesh net = mq::test::shapes::grid_net(8, 1.25, 0.25, 0.3, 0.125);
+    for (Vec3& v : net.vertices) {
+        const double x = v.x(), y = v.y();
+        v.x() = x + 0.1 * std::sin(2.0 * M_PI * y / 7.3);
+        v.y() = y + 0.1 * std::sin(2.0 * M_PI * x / 5.9);
+    }
     const mq::MeshAnalysis a = mq::analyse(net);
     ASSERT_EQ(a.boundary_edges, 0);
     ASSERT_EQ(a.non_manifold_edges, 0);
     ASSERT_EQ(a.genus, 64);
     mq::PlanarQuiltOptions o;
     o.width = o.height = 20.5;
-    o.seed = 1;
+    o.seed = 2;
     const mq::QuiltResult r = mq::quilt_plane(mq::normalize_swatch(net), o);
     EXPECT_LT(r.report.output_density, 0.75 * r.report.swatch_density);
     bool warned = false;

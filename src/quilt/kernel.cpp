@@ -1141,7 +1141,7 @@ PatchPlan plan_patch(const std::vector<OldElement>& old, const std::vector<NewEl
             // loser against the rest as any addition (collisions, clearance).
             Mesh loser = new_lost ? mi : mo;
             const Mesh& winner = new_lost ? mo : mi;
-            if (!meshes_intersect(loser, winner) && element_gap(loser, bounding_box(loser), winner, params.layer_gap) >= params.layer_gap) {
+            if (!meshes_intersect(loser, winner) && keeps_gap(element_gap(loser, bounding_box(loser), winner, params.layer_gap), params.layer_gap)) {
                 ch.mesh = winner;
                 ch.fallback = Mesh();
                 squeezed[k].kind = PatchPlan::Change::Added;

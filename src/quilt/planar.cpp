@@ -395,7 +395,7 @@ private:
         const Box3 box = bounding_box(m);
         const double g = sw_.near_gap;
         for (int id : elements_in_rect(box.min.x() - g, box.min.y() - g, box.max.x() + g, box.max.y() + g))
-            if (id != ignore && quilt::element_gap(m, box, elems_[static_cast<std::size_t>(id)].mesh, g) < g) return false;
+            if (id != ignore && !quilt::keeps_gap(quilt::element_gap(m, box, elems_[static_cast<std::size_t>(id)].mesh, g), g)) return false;
         return true;
     }
 

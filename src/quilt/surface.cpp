@@ -3121,7 +3121,7 @@ private:
         const Box3 box = bounding_box(m);
         const double gap = scale * sw_.near_gap;
         for (const Mesh* o : standing)
-            if (o != self && !o->faces.empty() && quilt::element_gap(m, box, *o, gap) < gap) return false;
+            if (o != self && !o->faces.empty() && !quilt::keeps_gap(quilt::element_gap(m, box, *o, gap), gap)) return false;
         return true;
     }
 
@@ -3587,7 +3587,7 @@ private:
         const Box3 box = bounding_box(embedded);
         for (int id : *mend_near_) {
             const SurfElement& e = elems_[static_cast<std::size_t>(id)];
-            if (e.alive && !e.embedded.faces.empty() && quilt::element_gap(embedded, box, e.embedded, gap) < gap) return false;
+            if (e.alive && !e.embedded.faces.empty() && !quilt::keeps_gap(quilt::element_gap(embedded, box, e.embedded, gap), gap)) return false;
         }
         return true;
     }

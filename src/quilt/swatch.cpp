@@ -18,6 +18,17 @@
 
 namespace meshquilt::quilt {
 
+namespace {
+/// refine_translation's polish: at most this many point-to-plane steps, ending sooner when a step
+/// moves less than kPolishTolerance swatch mean edges ...
+constexpr int kPolishSteps = 12;
+constexpr double kPolishTolerance = 1e-6;
+/// ... with this weight of point to point beside it (per sample, against 1 for a face normal lying
+/// in the plane); kept when the median sample then lies within this many mean edges of the swatch.
+constexpr double kPolishPointWeight = 0.05;
+constexpr double kPolishExact = 1e-3;
+}  // namespace
+
 std::string num(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -429,29 +440,68 @@ SwatchData prepare_swatch(const Mesh& input) {
 Vec2 refine_translation(const TriangleIndex& index, const MatchMetric& metric, const std::vector<Sample>& samples,
                     const Vec2& start, double max_offset) {
     if (samples.size() < 8) return start;
-    Vec2 t = start;
     const double reach = 2.0 * metric.unit;
     const std::size_t step = std::max<std::size_t>(1, samples.size() / 512);
-    for (int it = 0; it < 4; ++it) {
-        Vec2 sum = Vec2::Zero();
+    // Calls visit(d, hit) for the samples, shifted by -t, with a swatch face within `reach`: d is
+    // the sample's offset from its closest point; returns how many.
+    auto each_hit = [&](const Vec2& t, const auto& visit) {
         int n = 0;
         for (std::size_t k = 0; k < samples.size(); k += step) {
             const Vec3 p = samples[k].position - Vec3(t.x(), t.y(), 0.0);
             double score = 0.0;
             const ClosestHit h = index.best_match(p, samples[k].normal, metric, &score);
             if (h.face < 0 || h.distance > reach) continue;
-            sum += Vec2(p.x() - h.point.x(), p.y() - h.point.y());
+            visit(Vec3(p - h.point), h);
             ++n;
         }
-        if (n < 8) break;
-        Vec2 next = t + sum / n;
+        return n;
+    };
+    auto clamped = [&](Vec2 next) {
         const Vec2 off = next - start;
         if (off.norm() > max_offset) next = start + off * (max_offset / off.norm());
+        return next;
+    };
+    Vec2 t = start;
+    for (int it = 0; it < 4; ++it) {
+        Vec2 sum = Vec2::Zero();
+        const int n = each_hit(t, [&](const Vec3& d, const ClosestHit&) { sum += Vec2(d.x(), d.y()); });
+        if (n < 8) break;
+        const Vec2 next = clamped(t + sum / n);
         const double moved = (next - t).norm();
         t = next;
         if (moved < 1e-3 * metric.unit) break;
     }
-    return t;
+    // Polish (session 45): where the samples are a copy of the swatch (a lattice's old elements),
+    // point-to-plane steps take the shift to it exactly; the point-to-point steps above converge
+    // slowly on curved elements. Kept only when the copy is then exact.
+    Vec2 u = t;
+    for (int it = 0; it < kPolishSteps; ++it) {
+        // Minimises sum ((d - s) . n)^2 + mu |d_xy - s|^2 over the step s (d: a sample's offset
+        // from its closest swatch point, n: that face's normal; mu for flat tops, whose planes say
+        // nothing about xy).
+        Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+        Vec2 b = Vec2::Zero();
+        const int n = each_hit(u, [&](const Vec3& d, const ClosestHit& h) {
+            const Vec3& nf = index.face_normal(h.face);
+            const Vec2 nxy(nf.x(), nf.y());
+            A += nxy * nxy.transpose() + kPolishPointWeight * Eigen::Matrix2d::Identity();
+            b += nxy * d.dot(nf) + kPolishPointWeight * Vec2(d.x(), d.y());
+        });
+        if (n < 8) return t;
+        const Vec2 next = clamped(u + A.ldlt().solve(b));
+        if (!next.allFinite()) return t;
+        const double moved = (next - u).norm();
+        u = next;
+        if (moved < kPolishTolerance * metric.unit) break;
+    }
+    // Exact: the median sample lies on the swatch's surface within kPolishExact mean edges (samples
+    // beyond `reach` count as far).
+    std::vector<double> off;
+    each_hit(u, [&](const Vec3&, const ClosestHit& h) { off.push_back(h.distance); });
+    if (off.size() < 8) return t;
+    off.resize((samples.size() + step - 1) / step, std::numeric_limits<double>::infinity());
+    std::nth_element(off.begin(), off.begin() + static_cast<std::ptrdiff_t>(off.size() / 2), off.end());
+    return off[off.size() / 2] < kPolishExact * metric.unit ? u : t;
 }
 
 Placement place_swatch(const SwatchData& swatch, const TriangleIndex& index, const MatchMetric& metric,

@@ -126,7 +126,10 @@ double window_density(const Mesh& m, double x0, double y0, double x1, double y1)
 
 /// Beyond the paper: the best whole-cell translation is refined by translation-only ICP over the
 /// sub-patch samples (moving at most `max_offset`), so that lattice-like swatches (chain mail) line
-/// up exactly instead of within half a cell; element deformation then has less to correct.
+/// up exactly instead of within half a cell; element deformation then has less to correct. Point
+/// to point first; then, where the samples are a copy of the swatch (the median within 1e-3 mean
+/// edges of it once polished), polished by point-to-plane steps to within rounding, so that a
+/// lattice's copies keep its gaps (keeps_gap).
 Vec2 refine_translation(const TriangleIndex& swatch, const MatchMetric& metric, const std::vector<Sample>& samples,
                         const Vec2& start, double max_offset);
 
