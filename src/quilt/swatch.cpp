@@ -19,13 +19,15 @@
 namespace meshquilt::quilt {
 
 namespace {
-/// refine_translation's polish: at most this many point-to-plane steps, ending sooner when a step
-/// moves less than kPolishTolerance swatch mean edges ...
+/// refine_translation's polish: at most this many point-to-plane steps, until the median sample lies
+/// within kPolishDone swatch mean edges of the swatch (rounding) ...
 constexpr int kPolishSteps = 12;
-constexpr double kPolishTolerance = 1e-6;
-/// ... with this weight of point to point beside it (per sample, against 1 for a face normal lying
-/// in the plane); kept when the median sample then lies within this many mean edges of the swatch.
+constexpr double kPolishDone = 1e-7;
+/// ... with this weight of point to point beside them (per sample, against 1 for a face normal
+/// lying in the plane). It is given up as soon as a step leaves the median sample further than this
+/// share of its distance before the step, and kept if the median then lies within kPolishExact.
 constexpr double kPolishPointWeight = 0.05;
+constexpr double kPolishGain = 0.5;
 constexpr double kPolishExact = 1e-3;
 }  // namespace
 
@@ -473,35 +475,43 @@ Vec2 refine_translation(const TriangleIndex& index, const MatchMetric& metric, c
     }
     // Polish (session 45): where the samples are a copy of the swatch (a lattice's old elements),
     // point-to-plane steps take the shift to it exactly; the point-to-point steps above converge
-    // slowly on curved elements. Kept only when the copy is then exact.
+    // slowly on curved elements. Kept only when the copy is then exact: the median sample within
+    // kPolishExact mean edges of the swatch (samples beyond `reach` count as far).
+    const std::size_t visited = (samples.size() + step - 1) / step;
+    std::vector<double> off;
+    auto median_off = [&] {
+        off.resize(visited, std::numeric_limits<double>::infinity());
+        std::nth_element(off.begin(), off.begin() + static_cast<std::ptrdiff_t>(off.size() / 2), off.end());
+        return off[off.size() / 2] / metric.unit;
+    };
     Vec2 u = t;
-    for (int it = 0; it < kPolishSteps; ++it) {
+    double last = std::numeric_limits<double>::infinity();
+    for (int it = 0;; ++it) {
         // Minimises sum ((d - s) . n)^2 + mu |d_xy - s|^2 over the step s (d: a sample's offset
         // from its closest swatch point, n: that face's normal; mu for flat tops, whose planes say
         // nothing about xy).
         Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
         Vec2 b = Vec2::Zero();
+        off.clear();
         const int n = each_hit(u, [&](const Vec3& d, const ClosestHit& h) {
             const Vec3& nf = index.face_normal(h.face);
             const Vec2 nxy(nf.x(), nf.y());
             A += nxy * nxy.transpose() + kPolishPointWeight * Eigen::Matrix2d::Identity();
             b += nxy * d.dot(nf) + kPolishPointWeight * Vec2(d.x(), d.y());
+            off.push_back(h.distance);
         });
         if (n < 8) return t;
+        // A copy comes closer several times over at each step (a grid of spheres: 0.055, 0.0075,
+        // 0.0004 mean edges, ..., 1e-7 at the fifth); samples that are no copy stay about as far
+        // (chain mail on a surface), and the polish stops at the second pass.
+        const double now = median_off();
+        if (now < kPolishDone) return u;
+        if (now > kPolishGain * last || it == kPolishSteps) return now < kPolishExact ? u : t;
+        last = now;
         const Vec2 next = clamped(u + A.ldlt().solve(b));
         if (!next.allFinite()) return t;
-        const double moved = (next - u).norm();
         u = next;
-        if (moved < kPolishTolerance * metric.unit) break;
     }
-    // Exact: the median sample lies on the swatch's surface within kPolishExact mean edges (samples
-    // beyond `reach` count as far).
-    std::vector<double> off;
-    each_hit(u, [&](const Vec3&, const ClosestHit& h) { off.push_back(h.distance); });
-    if (off.size() < 8) return t;
-    off.resize((samples.size() + step - 1) / step, std::numeric_limits<double>::infinity());
-    std::nth_element(off.begin(), off.begin() + static_cast<std::ptrdiff_t>(off.size() / 2), off.end());
-    return off[off.size() / 2] < kPolishExact * metric.unit ? u : t;
 }
 
 Placement place_swatch(const SwatchData& swatch, const TriangleIndex& index, const MatchMetric& metric,
