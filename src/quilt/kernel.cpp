@@ -898,7 +898,7 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
         seam.insert(seam.end(), loops_out[i].begin(), loops_out[i].end());
         seam.insert(seam.end(), lb.begin(), lb.end());
     }
-    relax_seam(joined, seam, params.smoothing_rings, 4, params.keep_thread_widths && is_elongated(c_out) && is_elongated(c_in));
+    relax_seam(joined, seam, params.smoothing_rings, 4, is_elongated(c_out) && is_elongated(c_in));
 
     if (!is_closed_oriented(joined)) return fail("joined element not closed");
     if (count_components(joined) != 1) return fail("joined element in pieces");

@@ -40,9 +40,9 @@ struct KernelParams {
     std::vector<char> strands;
     /// Beyond the paper, off by default: two threads deform with whole cross-sections first
     /// (whole_section_targets; the paper's targets when that stitch fails or crosses an old
-    /// element), and a thread's seam is relaxed by Taubin's shrinking and inflating steps, so
-    /// threads keep their width where patches meet. It costs more than the planar and surface
-    /// speed targets allow (docs/planar.md, element deformation).
+    /// element), so threads keep their width where patches meet. It costs more than the planar
+    /// and surface speed targets allow (docs/planar.md, element deformation). (A stitched
+    /// thread's seam is relaxed by Taubin's shrinking and inflating steps either way: relax_seam.)
     bool keep_thread_widths = false;
     /// Beyond the paper: the swatch is layered (SwatchData::layered: overlapping scales). A stitch of
     /// two compact elements must then not reach beyond both halves' elements by more than
