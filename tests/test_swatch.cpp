@@ -170,6 +170,55 @@ TEST(SwatchData, KnowsANetSpansTheSwatch) {
     EXPECT_TRUE(net.spans_swatch());
 }
 
+// Threads modelled as open sheets (a ribbon weave) are quilted as closed strips: an open element
+// is never stitched, so ribbons stayed as short as a patch's piece of them (planar: 0.75 of the
+// density, on the eight at scale 0.2: 0.47-0.57). Open elements that are no threads (caps,
+// leaves) and closed threads are left as they are.
+TEST(SwatchData, MakesOpenThreadsClosedStrips) {
+    const Mesh ribbons = shapes::ribbon_weave(4, 1.25, 0.9, 0.2, 40);
+    const auto sw = mq::quilt::prepare_swatch(ribbons);
+    ASSERT_EQ(sw.elements.size(), 8u);
+    EXPECT_EQ(sw.solidified, 8);
+    EXPECT_NEAR(sw.solidify_thickness, mq::quilt::SwatchData::kSolidifyShare * 0.9, 0.01 * 0.9);
+    EXPECT_NE(sw.solidify_warning().find("8 threads are open sheets"), std::string::npos) << sw.solidify_warning();
+    for (std::size_t e = 0; e < sw.elements.size(); ++e) {
+        SCOPED_TRACE(e);
+        const Mesh& m = sw.elements[e];
+        EXPECT_TRUE(sw.element_closed[e]);
+        EXPECT_TRUE(mq::quilt::is_closed_oriented(m));
+        EXPECT_EQ(sw.element_genus[e], 0);
+        EXPECT_TRUE(mq::quilt::is_elongated(m));
+        EXPECT_EQ(mq::count_self_intersections(m), 0);
+        // Both sides of the sheet (0.9 x 5, a little more where it rises and falls) and a rim of
+        // the strip's thickness.
+        const double area = mq::quilt::mesh_area(m);
+        EXPECT_GT(area, 2.0 * 0.9 * 5.0);
+        EXPECT_LT(area, 2.0 * 0.9 * 5.0 * 1.1 + 2.0 * 5.9 * sw.solidify_thickness);
+        // Its middle is where the sheet was: the strip lies within half its thickness of it.
+        double lo = 1e9, hi = -1e9;
+        for (const Vec3& v : m.vertices) {
+            lo = std::min(lo, v.z());
+            hi = std::max(hi, v.z());
+        }
+        EXPECT_NEAR(hi - lo, 0.4 + sw.solidify_thickness, 0.01);
+    }
+    EXPECT_TRUE(sw.elements_disjoint);
+    EXPECT_EQ(sw.intersecting_pairs, 0);
+    EXPECT_NEAR(sw.box.size().x(), 5.0, 0.05);
+    EXPECT_NEAR(sw.box.size().y(), 5.0, 0.05);
+
+    // Not threads: the open caps stay open.
+    const auto caps = mq::quilt::prepare_swatch(mq::read_mesh(std::string(MQ_TEST_DATA_DIR) + "/planar/open_caps.obj"));
+    EXPECT_EQ(caps.solidified, 0);
+    EXPECT_TRUE(caps.solidify_warning().empty());
+    EXPECT_TRUE(std::none_of(caps.element_closed.begin(), caps.element_closed.end(), [](char c) { return c != 0; }));
+    // Closed threads are threads already.
+    const Mesh weave = mq::read_mesh(swatch_path("weave"));
+    const auto closed = mq::quilt::prepare_swatch(weave);
+    EXPECT_EQ(closed.solidified, 0);
+    EXPECT_EQ(closed.mesh.faces.size(), weave.faces.size());
+}
+
 namespace {
 Mesh turned(Mesh m, double degrees) {
     const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);

@@ -151,6 +151,10 @@ std::vector<Vec2> xy_hull(const Mesh& m);
 /// boundary or unused vertices gives a larger V - F/2 and stays a thread.
 bool is_elongated(const Mesh& m);
 
+/// A thread's width: its area over twice its length along its principal xy axis (a flat tube's
+/// cross-section is about twice as long as it is wide; an open sheet's width is twice this).
+double thread_width(const Mesh& m);
+
 /// Beyond the paper: a closed genus-0 element that is not a thread (is_elongated) is a strand, not a
 /// blob, when its footprint is at least this many times longer than wide (slenderness): knot work,
 /// a winding cord, a snowflake's arms. A strand squeezed or shrunk to fit comes out thinner than its

@@ -592,6 +592,7 @@ private:
         for (const auto& [stage, s] : stage_seconds_) r.seconds.emplace_back(stage, s);
         result.report = r;
         if (const std::string turned = sw_.turn_warning(); !turned.empty()) result.warnings.push_back(turned);
+        if (const std::string w = sw_.solidify_warning(); !w.empty()) result.warnings.push_back(w);
         if (r.elements_removed > 0)
             result.warnings.push_back(std::to_string(r.elements_removed) + " element(s) could not be made whole or intersected others and were removed");
         // A sparse output is no silent result: say how sparse, and what the merges said. (A swatch

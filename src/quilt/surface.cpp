@@ -320,6 +320,7 @@ public:
             throw InvalidInput("swatch has no thin axis: its smallest extent is more than half the middle one; a swatch must be a slab");
         sw_ = quilt::prepare_swatch(swatch);
         if (const std::string turned = sw_.turn_warning(); !turned.empty()) warnings_.push_back(turned);
+        if (const std::string w = sw_.solidify_warning(); !w.empty()) warnings_.push_back(w);
         if (const std::string w = sw_.intersect_warning(); !w.empty()) warnings_.push_back(w);
         for (std::size_t e = 0; e < sw_.elements.size(); ++e) rings_ = rings_ || is_ring_source(static_cast<int>(e));
         interlocked_ = rings_ && swatch_rings_interlock();

@@ -5,6 +5,7 @@
 #include "meshquilt/analysis.h"
 #include "meshquilt/quilt.h"
 #include "quilt/kernel.h"
+#include "quilt/trim.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -284,6 +285,61 @@ double thin_tight_rings(Mesh* m, const std::vector<int>& comp, int count) {
     return d;
 }
 
+/// Beyond the paper: a thread modelled as an open sheet (a ribbon of a ribbon weave, a strip of a
+/// basket) made a closed strip `*thickness` thick: the sheet offset by half of it to either side
+/// along its vertex normals, the two sides joined along its rim. False (and `e` untouched) unless
+/// `e` is an open, oriented sheet whose rim is simple loops, a thread (is_elongated), and the strip
+/// comes out closed and free of self-intersections.
+bool solidify_sheet(Mesh* e, double* thickness) {
+    if (e->faces.empty() || is_closed_oriented(*e) || !is_elongated(*e)) return false;
+    std::set<std::pair<int, int>> directed;
+    for (const Tri& f : e->faces)
+        for (int k = 0; k < 3; ++k)
+            if (!directed.emplace(f[k], f[(k + 1) % 3]).second) return false;  // not oriented, or not manifold
+    std::vector<std::vector<int>> loops;
+    if (!boundary_loops(*e, &loops) || loops.empty()) return false;
+    const double t = SwatchData::kSolidifyShare * 2.0 * thread_width(*e);  // a sheet's area over its length
+    if (!(t > 0.0) || !std::isfinite(t)) return false;
+    const std::vector<Vec3> normal = vertex_normals(*e);
+    const auto nv = static_cast<int>(e->vertices.size());
+    Mesh strip;
+    strip.vertices.reserve(2 * e->vertices.size());
+    for (std::size_t v = 0; v < e->vertices.size(); ++v) {
+        if (!normal[v].allFinite()) return false;
+        strip.vertices.push_back(e->vertices[v] + 0.5 * t * normal[v]);
+    }
+    for (std::size_t v = 0; v < e->vertices.size(); ++v) strip.vertices.push_back(e->vertices[v] - 0.5 * t * normal[v]);
+    for (const Tri& f : e->faces) strip.faces.push_back(f);
+    for (const Tri& f : e->faces) strip.faces.push_back(Tri(f[2] + nv, f[1] + nv, f[0] + nv));
+    // The rim: each loop runs as its faces traverse it (a -> b), and the wall's faces use b -> a.
+    for (const auto& loop : loops)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            const int a = loop[i], b = loop[(i + 1) % loop.size()];
+            strip.faces.push_back(Tri(b, a, a + nv));
+            strip.faces.push_back(Tri(b, a + nv, b + nv));
+        }
+    if (!is_closed_oriented(strip) || count_self_intersections(strip, 1) > 0) return false;
+    *e = std::move(strip);
+    *thickness = t;
+    return true;
+}
+
+/// The swatch `m` with its open threads made closed strips (solidify_sheet); the other elements as
+/// they are. Returns how many were made strips (0: `m` untouched), `*thickness` the thickest strip.
+int solidify_open_threads(Mesh* m, double* thickness) {
+    std::vector<Mesh> parts = split_components(*m);
+    int done = 0;
+    for (Mesh& e : parts) {
+        double t = 0.0;
+        if (solidify_sheet(&e, &t)) {
+            ++done;
+            *thickness = std::max(*thickness, t);
+        }
+    }
+    if (done > 0) *m = join_meshes(parts);
+    return done;
+}
+
 }  // namespace
 
 void thicken_elements(Mesh* mesh, const std::vector<int>& element_of_face, const std::vector<double>& offset) {
@@ -342,6 +398,13 @@ std::string SwatchData::intersect_warning() const {
            "a new element that meets an old one is left out, so the output may be sparse";
 }
 
+std::string SwatchData::solidify_warning() const {
+    if (solidified == 0) return {};
+    return "the swatch's " + std::to_string(solidified) + (solidified == 1 ? " thread is an open sheet" : " threads are open sheets") +
+           " (ribbons): each was made a closed strip " + num(solidify_thickness) + " swatch units thick (" + num(kSolidifyShare) +
+           " of its width), so that it is cut, stitched and woven as a closed thread is; the output's threads are such strips";
+}
+
 std::string SwatchData::turn_warning() const {
     if (turn == 0.0) return {};
     return "the swatch's threads run at " + num(std::round(-turn * 1800.0 / M_PI) / 10.0) +
@@ -358,6 +421,11 @@ SwatchData prepare_swatch(const Mesh& input) {
         const double c = std::cos(s.turn), sn = std::sin(s.turn);
         for (Vec3& v : s.mesh.vertices) v = Vec3(c * v.x() - sn * v.y(), sn * v.x() + c * v.y(), v.z());
         s.mesh = meshquilt::normalize_swatch(s.mesh);  // back to the origin; z stays the thin axis
+        comp = connected_components(s.mesh, &count);
+    }
+    s.solidified = solidify_open_threads(&s.mesh, &s.solidify_thickness);
+    if (s.solidified > 0) {
+        s.mesh = meshquilt::normalize_swatch(s.mesh);  // the strips' sides may reach past the footprint's corner
         comp = connected_components(s.mesh, &count);
     }
     s.box = bounding_box(s.mesh);

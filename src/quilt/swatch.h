@@ -52,6 +52,15 @@ struct SwatchData {
     double turn = 0.0;
     /// The warning both stages give for a turned swatch (empty when it was not turned).
     std::string turn_warning() const;
+    /// Beyond the paper: threads modelled as open sheets (ribbons) are quilted as closed strips,
+    /// kSolidifyShare of their width thick (the sheet offset by half of it to either side): an open
+    /// element is never stitched (its cut parts hold its rim among their boundary loops), so
+    /// ribbons stayed as short as a patch's piece of them, and on a surface their trimmed pieces
+    /// were dropped. The count of such threads (0: none) and the thickest strip (swatch units).
+    int solidified = 0;
+    double solidify_thickness = 0.0;
+    /// The warning both stages give for a swatch with such threads (empty when none).
+    std::string solidify_warning() const;
     /// Pairs of the input swatch's elements that intersect or touch (linked rings of a wire too
     /// thick for their spacing, pebbles modelled touching): counted up to kMaxCountedPairs.
     int intersecting_pairs = 0;
@@ -77,6 +86,7 @@ struct SwatchData {
     static constexpr double kMinThinVolume = 0.4;
     static constexpr double kMaxThinning = 0.25;
     static constexpr double kSpanningCover = 0.5;
+    static constexpr double kSolidifyShare = 0.05;
 };
 
 /// A swatch whose threads run at an angle to its axes is turned in its plane when its threads'

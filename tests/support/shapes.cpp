@@ -204,6 +204,39 @@ Mesh grid_net(int n, double pitch, double bar, double h, double cell) {
     return m;
 }
 
+Mesh ribbon_weave(int n, double pitch, double width, double amplitude, int segments) {
+    Mesh m;
+    const double length = n * pitch;
+    for (int along = 0; along < 2; ++along)
+        for (int i = 0; i < n; ++i) {
+            const double across = (i + 0.5) * pitch;
+            // Warp i (along x) is over weft j at x = (j + 0.5) pitch where i + j is even; weft j the other way.
+            const double sign = along == 0 ? 1.0 : -1.0;
+            const int first = static_cast<int>(m.vertices.size());
+            for (int k = 0; k <= segments; ++k) {
+                const double t = length * k / segments;
+                const double z = sign * amplitude * std::cos(M_PI * (t / pitch - 0.5) + M_PI * i);
+                for (int s = 0; s < 3; ++s) {
+                    const double c = across + (s - 1) * 0.5 * width;
+                    m.vertices.push_back(along == 0 ? Vec3(t, c, z) : Vec3(c, t, z));
+                }
+            }
+            for (int k = 0; k < segments; ++k)
+                for (int s = 0; s < 2; ++s) {
+                    const int a = first + 3 * k + s, b = a + 1, c = a + 3, d = a + 4;
+                    // Faces up: (t, across) is right-handed for warps, left-handed for wefts.
+                    if (along == 0) {
+                        m.faces.push_back({a, c, d});
+                        m.faces.push_back({a, d, b});
+                    } else {
+                        m.faces.push_back({a, b, d});
+                        m.faces.push_back({a, d, c});
+                    }
+                }
+        }
+    return m;
+}
+
 Mesh concat(const Mesh& a, const Mesh& b) {
     Mesh m = a;
     const int offset = static_cast<int>(a.vertices.size());

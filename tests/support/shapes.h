@@ -41,6 +41,12 @@ Mesh double_torus();
 /// cells, vertices shared).
 Mesh grid_net(int n, double pitch, double bar, double h, double cell);
 
+/// A plain weave of `n` warp ribbons along x and `n` weft ribbons along y, `pitch` apart, each an
+/// open sheet (no thickness) `width` wide over a length of n * pitch, rising and falling by
+/// `amplitude` (a cosine) over and under the ribbons it crosses (warp i over weft j where i + j is
+/// even), `segments` quads along each ribbon and two across. Faces up (+z normal).
+Mesh ribbon_weave(int n, double pitch, double width, double amplitude, int segments);
+
 /// A flat disc of `radius` at z = 0 (normal +z) triangulated as a fan: `n` slivers from the centre
 /// to the rim, as CAD exporters triangulate a round face. Open.
 Mesh fan_disc(double radius, int n);
