@@ -102,16 +102,15 @@ TEST(Stitching, TwoThreadsBecomeOneAndMoveOnlyNearTheSeam) {
     EXPECT_GT(checked, 50);
 }
 
-// A round thread along x over [x0, x0 + 10]: a tube of radius 0.2 with 12 sides, a ring of vertices
-// every 0.125, closed by fans; offset in y and z.
-Mesh round_thread(double x0, double dy, double dz) {
-    constexpr double r = 0.2;
+// A round thread along x over [x0, x0 + 10]: a tube of radius 0.2 (or of radii ry across and rz up)
+// with 12 sides, a ring of vertices every 0.125, closed by fans; offset in y and z.
+Mesh round_thread(double x0, double dy, double dz, double ry = 0.2, double rz = 0.2) {
     constexpr int sides = 12, rings = 81;
     Mesh m;
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < sides; ++j) {
             const double a = 2.0 * M_PI * j / sides;
-            m.vertices.emplace_back(x0 + 0.125 * i, dy + r * std::cos(a), dz + r * std::sin(a));
+            m.vertices.emplace_back(x0 + 0.125 * i, dy + ry * std::cos(a), dz + rz * std::sin(a));
         }
     auto at = [](int i, int j) { return i * sides + (j % sides); };
     for (int i = 0; i + 1 < rings; ++i)
@@ -180,14 +179,12 @@ const Mesh* stitched_mesh(const mq::quilt::PatchPlan& plan) {
 TEST(Stitching, ARoundThreadKeepsItsWidthAtTheSeam) {
     // The seam's relaxation used plain Laplacian steps, which pull a tube in towards its axis: the
     // stitched thread was pinched to about 0.85 of its radius there (a weave lost a few percent of
-    // its density to it). Taubin's lambda|mu steps keep the cross-section, by default (since
-    // session 46; before, only with keep_thread_widths, whose whole-section targets cost time).
+    // its density to it). Taubin's lambda|mu steps keep the cross-section.
     const Mesh old_thread = round_thread(0.0, 0.0, 0.0);
     const Mesh new_thread = round_thread(6.0, 0.03, 0.01);
     ASSERT_TRUE(mq::quilt::is_closed_oriented(old_thread));
     const mq::quilt::Overlap ov = round_threads_overlap();
     mq::quilt::KernelParams params = round_threads_params();
-    params.keep_thread_widths = false;
     Mesh joined;
     std::string why;
     mq::quilt::StitchOutcome outcome = mq::quilt::StitchOutcome::KeepOld;
@@ -197,6 +194,37 @@ TEST(Stitching, ARoundThreadKeepsItsWidthAtTheSeam) {
     const Sections s = sections(joined, 6.0, 10.0, Vec2(0.015, 0.005));
     EXPECT_GT(s.count, 20);
     EXPECT_GT(s.narrowest, 0.95 * 0.4) << "the stitched thread is pinched at its seam";
+}
+
+TEST(Stitching, AFlatThreadKeepsItsWidthAtTheSeam) {
+    // A tape 0.9 wide and 0.06 thick (a ribbon quilted as a strip, SwatchData::solidified): plain
+    // Laplacian steps drew its sides together at the seam, to 0.80 of its width here (and to a
+    // point in quilted ribbon weaves). A flat thread's seam gets Taubin's steps without
+    // keep_thread_widths (quilt::flat_thread); a round one keeps the plain steps.
+    const Mesh old_thread = round_thread(0.0, 0.0, 0.0, 0.45, 0.03);
+    const Mesh new_thread = round_thread(6.0, 0.03, 0.005, 0.45, 0.03);
+    EXPECT_TRUE(mq::quilt::flat_thread(old_thread));
+    EXPECT_FALSE(mq::quilt::flat_thread(round_thread(0.0, 0.0, 0.0)));
+    EXPECT_FALSE(mq::quilt::flat_thread(round_thread(0.0, 0.0, 0.0, 0.44, 0.17)));  // the bundled weave's section
+    mq::quilt::KernelParams params = round_threads_params();
+    params.keep_thread_widths = false;
+    Mesh joined;
+    std::string why;
+    mq::quilt::StitchOutcome outcome = mq::quilt::StitchOutcome::KeepOld;
+    ASSERT_TRUE(mq::quilt::stitch_elements(old_thread, new_thread, round_threads_overlap(), params, &joined, &why, &outcome)) << why;
+    ASSERT_EQ(outcome, mq::quilt::StitchOutcome::Stitched);
+    ASSERT_TRUE(mq::quilt::is_closed_oriented(joined));
+    double narrowest = 1e9;
+    for (double c = 6.0; c <= 10.0; c += 0.0625) {
+        double lo = 1e9, hi = -1e9;
+        for (const Vec3& v : joined.vertices)
+            if (std::abs(v.x() - c) < 0.03) {
+                lo = std::min(lo, v.y());
+                hi = std::max(hi, v.y());
+            }
+        if (hi > lo) narrowest = std::min(narrowest, hi - lo);
+    }
+    EXPECT_GT(narrowest, 0.9 * 0.9) << "the stitched tape is pinched at its seam";
 }
 
 TEST(Merging, ThreadsKeepTheirWidthWhereTheyMeet) {

@@ -50,6 +50,12 @@ constexpr double kSeamReach = 6.0;
 /// lambda, negated): a little more than 1, so that the smoothing keeps a tube's cross-section
 /// (relax_seam).
 constexpr double kTaubinInflate = 1.06;
+/// A thread is flat (flat_thread) when its half perimeter squared over its cross-section's area is
+/// at least this: a flat strip w x h gives (w + h)^2 / (w h), 8 at w = 5.8 h (a circle pi). Measured
+/// on whole threads (their undulation counts): the bundled weave 5.07, a weave of threads 0.8 of
+/// their spacing wide 6.1, a 2/2 twill of them 5.95, the public Truchet knots 4.2-5.5 and
+/// Hitomezashi loops 4.7-12.9, ribbons quilted as strips (SwatchData::solidified) 21.6.
+constexpr double kFlatThread = 8.0;
 
 /// A blob squeezed clear of its partner must keep this share of its footprint (see plan_patch).
 constexpr double kMinSqueezedArea = 0.6;
@@ -724,6 +730,13 @@ double thread_width(const Mesh& m) {
     return mesh_area(m) / std::max(2.0 * (hi - lo), 1e-300);
 }
 
+bool flat_thread(const Mesh& m) {
+    double volume = 0.0;
+    for (const Tri& f : m.faces) volume += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));
+    volume = std::fabs(volume) / 6.0;
+    return volume > 0.0 && thread_width(m) * mesh_area(m) / (2.0 * volume) >= kFlatThread;
+}
+
 /// Beyond the paper: the targets of a thread's constraints (Eq. 5-6) replaced by their sources moved
 /// by the mean shift of all constraints within one thread width (thread_width), so that the
 /// deformation moves the thread's cross-sections whole. Vertex by vertex, a thread's sides are
@@ -898,7 +911,8 @@ bool stitch_elements(const Mesh& c_out, const Mesh& c_in, const Overlap& ov, con
         seam.insert(seam.end(), loops_out[i].begin(), loops_out[i].end());
         seam.insert(seam.end(), lb.begin(), lb.end());
     }
-    relax_seam(joined, seam, params.smoothing_rings, 4, is_elongated(c_out) && is_elongated(c_in));
+    relax_seam(joined, seam, params.smoothing_rings, 4,
+               is_elongated(c_out) && is_elongated(c_in) && (params.keep_thread_widths || flat_thread(c_out) || flat_thread(c_in)));
 
     if (!is_closed_oriented(joined)) return fail("joined element not closed");
     if (count_components(joined) != 1) return fail("joined element in pieces");

@@ -40,9 +40,10 @@ struct KernelParams {
     std::vector<char> strands;
     /// Beyond the paper, off by default: two threads deform with whole cross-sections first
     /// (whole_section_targets; the paper's targets when that stitch fails or crosses an old
-    /// element), so threads keep their width where patches meet. It costs more than the planar
-    /// and surface speed targets allow (docs/planar.md, element deformation). (A stitched
-    /// thread's seam is relaxed by Taubin's shrinking and inflating steps either way: relax_seam.)
+    /// element), and a thread's seam is relaxed by Taubin's shrinking and inflating steps, so
+    /// threads keep their width where patches meet. It costs more than the planar and surface
+    /// speed targets allow (docs/planar.md, element deformation). (Flat threads get the Taubin
+    /// steps either way: flat_thread.)
     bool keep_thread_widths = false;
     /// Beyond the paper: the swatch is layered (SwatchData::layered: overlapping scales). A stitch of
     /// two compact elements must then not reach beyond both halves' elements by more than
@@ -154,6 +155,13 @@ bool is_elongated(const Mesh& m);
 /// A thread's width: its area over twice its length along its principal xy axis (a flat tube's
 /// cross-section is about twice as long as it is wide; an open sheet's width is twice this).
 double thread_width(const Mesh& m);
+
+/// Beyond the paper: a closed thread much wider than thick (a tape, a ribbon quilted as a strip):
+/// its half perimeter (thread_width) times its area over twice its volume, the square of the
+/// cross-section's half perimeter over its area, is at least kFlatThread (kernel.cpp). The seam
+/// of a stitch of such threads is relaxed by Taubin's steps (relax_seam): plain Laplacian steps
+/// drew a strip's sides together to a point at every seam.
+bool flat_thread(const Mesh& m);
 
 /// Beyond the paper: a closed genus-0 element that is not a thread (is_elongated) is a strand, not a
 /// blob, when its footprint is at least this many times longer than wide (slenderness): knot work,
