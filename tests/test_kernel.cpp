@@ -198,8 +198,8 @@ TEST(Stitching, ARoundThreadKeepsItsWidthAtTheSeam) {
 
 TEST(Stitching, AFlatThreadKeepsItsWidthAtTheSeam) {
     // A tape 0.9 wide and 0.06 thick (a ribbon quilted as a strip, SwatchData::solidified): plain
-    // Laplacian steps drew its sides together at the seam, to 0.80 of its width here (and to a
-    // point in quilted ribbon weaves). A flat thread's seam gets Taubin's steps without
+    // Laplacian steps drew its sides together at the seam, to 0.80 of its width here (and into
+    // diamond-shaped pinches at the seams of a quilted ribbon weave, seen in renders). A flat thread's seam gets Taubin's steps without
     // keep_thread_widths (quilt::flat_thread); a round one keeps the plain steps.
     const Mesh old_thread = round_thread(0.0, 0.0, 0.0, 0.45, 0.03);
     const Mesh new_thread = round_thread(6.0, 0.03, 0.005, 0.45, 0.03);

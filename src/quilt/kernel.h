@@ -160,7 +160,7 @@ double thread_width(const Mesh& m);
 /// its half perimeter (thread_width) times its area over twice its volume, the square of the
 /// cross-section's half perimeter over its area, is at least kFlatThread (kernel.cpp). The seam
 /// of a stitch of such threads is relaxed by Taubin's steps (relax_seam): plain Laplacian steps
-/// drew a strip's sides together to a point at every seam.
+/// drew a strip's sides together at every seam (diamond-shaped pinches in a ribbon weave's renders).
 bool flat_thread(const Mesh& m);
 
 /// Beyond the paper: a closed genus-0 element that is not a thread (is_elongated) is a strand, not a
