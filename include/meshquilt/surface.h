@@ -101,6 +101,7 @@ struct SurfaceQualityReport {
     int threads_filled = 0;        ///< threads laid into gaps where a direction's threads were missing (weave seams), whole or in pieces
     int threads_turned = 0;        ///< of threads_filled, those laid turned from the patch frame's axis to run with the threads beside their gap
     int threads_torn = 0;          ///< threads whose embedding stretched faces into a fan: cut clear of them (new) or refused (old)
+    int threads_dented = 0;        ///< threads that grazed another element with a few faces, dented clear of it (a real thread flattens where pressed)
     int elements_torn = 0;         ///< tries of other elements refused where the embedding made a face over 4 times the swatch's largest
     int threads_mended = 0;        ///< of those, laid after the last patch (gaps left or opened by later patches)
     int gaps_closed = 0;           ///< paving stones grown radially into holes where several meet, after the last patch (included in joints_closed)

@@ -1001,19 +1001,23 @@ bool ElementCollider::collides(const Mesh& candidate, const std::vector<int>& ig
     return any;
 }
 
-std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const std::vector<int>& ignore) const {
+std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const std::vector<int>& ignore, std::size_t max_hits) const {
     std::vector<char> hit(candidate.faces.size(), 0);
     const Impl::Query q = impl_->prepare_query(candidate, ignore);
     std::vector<NodePair> stack;
+    std::size_t hits = 0;
     for (int id : q.ids) {
         const Prepared& e = impl_->entries[static_cast<std::size_t>(id)]->geometry;
         if (e.tree.empty() || !overlap(q.c.box, e.box)) continue;
         auto mark = [&](int i, int j) {
             char& h = hit[static_cast<std::size_t>(q.faces[static_cast<std::size_t>(i)])];
-            if (!h && prims_intersect(q.c.prims[static_cast<std::size_t>(i)], e.prims[static_cast<std::size_t>(j)])) h = 1;
-            return false;
+            if (!h && prims_intersect(q.c.prims[static_cast<std::size_t>(i)], e.prims[static_cast<std::size_t>(j)])) {
+                h = 1;
+                ++hits;
+            }
+            return hits > max_hits;
         };
-        traverse_from(q.c.tree, e.tree, false, {0, 0}, mark, stack);
+        if (traverse_from(q.c.tree, e.tree, false, {0, 0}, mark, stack)) break;
     }
     return hit;
 }

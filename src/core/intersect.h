@@ -124,9 +124,11 @@ public:
     [[nodiscard]] bool collides(const Mesh& candidate, const std::vector<int>& ignore = {}) const;
 
     /// Per face of `candidate`: 1 when it intersects or touches a stored element not in `ignore`.
-    /// Every pair is tested (no early stop), serially, so it costs more than `collides`.
+    /// Every pair is tested serially, so it costs more than `collides`; once more than `max_hits`
+    /// faces are found the search stops (the rest of the faces may then be hit and still read 0).
     /// \throw InvalidInput bad indices or non-finite coordinates in `candidate`
-    [[nodiscard]] std::vector<char> colliding_faces(const Mesh& candidate, const std::vector<int>& ignore = {}) const;
+    [[nodiscard]] std::vector<char> colliding_faces(const Mesh& candidate, const std::vector<int>& ignore = {},
+                                                    std::size_t max_hits = static_cast<std::size_t>(-1)) const;
 
     /// Number of stored (added and not removed) elements.
     [[nodiscard]] std::size_t size() const;

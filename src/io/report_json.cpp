@@ -108,6 +108,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"threads_mended", s.threads_mended},
                         {"gaps_closed", s.gaps_closed},
                         {"threads_torn", s.threads_torn},
+                        {"threads_dented", s.threads_dented},
                         {"elements_torn", s.elements_torn},
                         {"threads_cut_at_patch", s.threads_cut_at_patch},
                         {"elements_folded", s.elements_folded},

@@ -32,6 +32,7 @@
 #include <map>
 #include <queue>
 #include <random>
+#include <set>
 #include <unordered_map>
 
 #include <tbb/parallel_for.h>
@@ -198,6 +199,15 @@ constexpr double kThreadGap = 0.55;
 /// Gaps tried per direction and patch at most (fill_threads_patch; 16 is more than any patch of
 /// the eight, spot or bunny had).
 constexpr int kThreadFillTries = 16;
+/// Beyond the paper: a thread (new, stitched or deformed) that grazes another element with a few
+/// faces (a stitch's deformation moved it a hair; a tight weave's threads are a tenth of their
+/// width apart where they cross) is dented clear of it, as a real thread flattens where it is
+/// pressed (dent_clear): the vertices of its colliding faces move inward along their normals by
+/// kDentStep of its thickness per try (their neighbours by half, the next ring by a quarter), at
+/// most kDentTries times, and only while the colliding faces are at most kDentMaxShare of its faces.
+constexpr double kDentStep = 0.06;
+constexpr int kDentTries = 3;
+constexpr double kDentMaxShare = 0.02;
 /// A gap whose neighbouring threads of the same direction turn from the frame's axis by at least
 /// this much (radians, 3 degrees; parallel_angle) gets a thread turned with them when one along
 /// the axis does not fit.
@@ -2788,6 +2798,66 @@ private:
         return false;
     }
 
+    /// Beyond the paper: thread `frame` (in the patch frame), whose embedding `embedded` collides
+    /// with a few faces only, dented clear (kDentStep, kDentTries, kDentMaxShare): the
+    /// vertices of the colliding faces move inward along their frame normals, their neighbours by
+    /// half as much and the next ring by a quarter, and the thread is embedded again, until it
+    /// collides with nothing or the tries run out. True with the dented frame mesh, its anchors and
+    /// embedding when it comes out clear, not folded and not torn.
+    bool dent_clear(const Mesh& frame, int source, bool fresh, const Reach* at, const std::vector<int>& ignore, const Mesh& embedded, const quilt::FlatPatch& flat,
+                    const quilt::PatchLocator& locator, double hs, double local, Mesh* out_frame, std::vector<SurfacePoint>* out_anchors,
+                    Mesh* out_embedded) const {
+        const std::size_t F = frame.faces.size(), V = frame.vertices.size();
+        if (F == 0 || embedded.faces.size() != F) return false;
+        double volume = 0.0;
+        for (const Tri& t : frame.faces)
+            volume += frame.vertices[static_cast<std::size_t>(t[0])].dot(frame.vertices[static_cast<std::size_t>(t[1])].cross(frame.vertices[static_cast<std::size_t>(t[2])])) / 6.0;
+        const double thickness = 4.0 * volume / std::max(quilt::mesh_area(frame), 1e-300);  // a round tube's diameter
+        if (!(thickness > 0.0) || !std::isfinite(thickness)) return false;
+        std::vector<std::vector<int>> nb(V);
+        for (const Tri& t : frame.faces)
+            for (int k = 0; k < 3; ++k) nb[static_cast<std::size_t>(t[k])].push_back(t[(k + 1) % 3]);
+        Mesh current = frame;
+        Mesh current_embedded = embedded;
+        std::vector<double> depth(V, 0.0);  // the dent so far, per vertex
+        for (int attempt = 0; attempt < kDentTries; ++attempt) {
+            const auto most = static_cast<std::size_t>(kDentMaxShare * static_cast<double>(F));
+            const std::vector<char> hit = collider_.colliding_faces(current_embedded, ignore, most);
+            const auto hits = static_cast<std::size_t>(std::count(hit.begin(), hit.end(), 1));
+            if (hits == 0 && attempt == 0) return false;  // nothing to dent
+            if (hits == 0) break;
+            if (hits > most) return false;  // an overlap, not a graze
+            std::vector<double> add(V, 0.0);
+            for (std::size_t f = 0; f < F; ++f)
+                if (hit[f])
+                    for (int k = 0; k < 3; ++k) add[static_cast<std::size_t>(frame.faces[f][k])] = 1.0;
+            for (double share : {0.5, 0.25}) {  // the next two rings, eased
+                std::vector<double> next = add;
+                for (std::size_t v = 0; v < V; ++v)
+                    if (add[v] > share)
+                        for (int w : nb[v]) next[static_cast<std::size_t>(w)] = std::max(next[static_cast<std::size_t>(w)], share);
+                add = std::move(next);
+            }
+            const std::vector<Vec3> normal = vertex_normals(frame);
+            current = frame;
+            for (std::size_t v = 0; v < V; ++v) {
+                depth[v] += add[v] * kDentStep * thickness;
+                if (normal[v].allFinite()) current.vertices[v] -= depth[v] * normal[v];
+            }
+            std::vector<SurfacePoint> anchors;
+            Mesh emb;
+            if (!embed_sized(current, source, fresh, flat, locator, hs, local, at, &anchors, &emb, nullptr)) return false;
+            current_embedded = std::move(emb);
+            *out_anchors = std::move(anchors);
+        }
+        if (collider_.collides(current_embedded, ignore) || count_self_intersections(current_embedded, 1) > 0 ||
+            !stretched_faces(current, current_embedded).empty())
+            return false;
+        *out_frame = std::move(current);
+        *out_embedded = std::move(current_embedded);
+        return true;
+    }
+
     /// Applies a plan like the planar stage does, with collisions tested on the embedded elements.
     /// `old` and `obstacles` are the output's elements in the patch frame before the plan (for the
     /// clearance of nudged elements).
@@ -2801,6 +2871,8 @@ private:
             double resize = 1.0;  ///< the element's scale in the frame for its size on the surface (embed_sized)
             double fallback_resize = 1.0;
             std::vector<char> folded;  ///< a thread's faces that the embedding folds or tears (stretched_faces; none: it does neither)
+            std::vector<int> dent_hit;  ///< the collider ids it met when dent_clear was last tried (tried again only once one of them is gone)
+            const Mesh* dented = nullptr;  ///< the thread's frame mesh dented clear (dent_clear), when it was
         };
         // A new element goes onto the surface at its swatch element's size: where the patch's map
         // scales area (LSCM is conformal, not area preserving; normal displacement fans out over
@@ -2903,6 +2975,8 @@ private:
         std::vector<const Mesh*> around;
         for (const auto& oe : old) around.push_back(&oe.mesh);
         for (const Mesh& m : obstacles) around.push_back(&m);
+        std::deque<Mesh> dented;  // frame meshes of threads dented clear (dent_clear), for nudging
+        std::set<int> removed;    // collider ids of the old elements removed so far (a thread's dent is tried again only when one it met is gone)
         for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
             std::vector<Candidate> refused;
             const std::size_t before = pending.size();
@@ -2923,6 +2997,25 @@ private:
                 std::vector<SurfacePoint>* anchors = &c.anchors;
                 Mesh* embedded = &c.embedded;
                 const int of = ch->source >= 0 || ch->old_id < 0 ? ch->source : elems_[static_cast<std::size_t>(ch->old_id)].source;
+                const bool dent_again =
+                    c.dent_hit.empty() || std::any_of(c.dent_hit.begin(), c.dent_hit.end(), [&](int id) { return removed.count(id) > 0; });
+                if (dent_again && c.folded.empty() && quilt::is_elongated(ch->mesh) && !off_size(c.embedded, of, local) &&
+                    collider_.collides(c.embedded, ignore)) {
+                    c.dent_hit = collider_.colliding(c.embedded, ignore);
+                    const auto r = reach_.find(ch->old_id);
+                    const Reach* at = ch->old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
+                    Mesh frame;
+                    std::vector<SurfacePoint> dent_anchors;
+                    Mesh dent_embedded;
+                    if (dent_clear(ch->mesh, ch->source, kind == Kind::Added || kind == Kind::Replaced, at, ignore, c.embedded, flat, locator, hs, local, &frame,
+                                   &dent_anchors, &dent_embedded)) {
+                        dented.push_back(std::move(frame));
+                        c.anchors = std::move(dent_anchors);
+                        c.embedded = std::move(dent_embedded);
+                        c.dented = &dented.back();
+                        ++surface_.threads_dented;
+                    }
+                }
                 if (collider_.collides(c.embedded, ignore) || off_size(c.embedded, of, local)) {
                     // A thread's whole partner would replace the old thread, parts beyond the patch
                     // included: it is cut clear of the old one instead (below).
@@ -2943,14 +3036,16 @@ private:
                     if (source < 0) source = elems_[static_cast<std::size_t>(ch->old_id)].source;
                     cut = (kind == Kind::Stitched && quilt::is_strand_source(sw_, source)) ||
                           (kind != Kind::Replaced && elems_[static_cast<std::size_t>(ch->old_id)].cut);
+                    removed.insert(elems_[static_cast<std::size_t>(ch->old_id)].collider_id);
                     remove_element(ch->old_id);
                     if (kind == Kind::Stitched) ++report_.elements_stitched;
                     if (kind == Kind::Replaced) ++report_.elements_replaced;
                 }
+                const Mesh* frame_mesh = faces == &ch->fallback.faces ? &ch->fallback : c.dented ? c.dented : &ch->mesh;
                 add_element(std::move(*anchors), *faces, std::move(*embedded), source, cut);
                 if (kind == Kind::Added && ch >= plan.changes.data() + plan.squeezed_from && ch < plan.changes.data() + plan.squeezed_from + plan.squeezed)
                     ++report_.losers_kept;
-                applied.push_back(faces == &ch->fallback.faces ? &ch->fallback : &ch->mesh);
+                applied.push_back(frame_mesh);
             }
             if (refused.size() == before) {
                 pending = std::move(refused);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <tuple>
+#include <utility>
 #include <vector>
 #include <set>
 #include <stdexcept>
@@ -204,36 +205,86 @@ Mesh grid_net(int n, double pitch, double bar, double h, double cell) {
     return m;
 }
 
+namespace {
+
+/// Calls fn(along, across, z) for each of the 2n threads of a plain weave, `pitch` apart:
+/// `along` 0 for the warps (along x), 1 for the wefts (along y); `across` the thread's centre
+/// line across; z(t) its height at t along it, rising and falling by `amplitude` (a cosine) over
+/// and under the threads it crosses (warp i over weft j at t = (j + 0.5) pitch where i + j is even).
+template <class Fn>
+void for_each_weave_thread(int n, double pitch, double amplitude, Fn fn) {
+    for (int along = 0; along < 2; ++along)
+        for (int i = 0; i < n; ++i) {
+            const double sign = along == 0 ? 1.0 : -1.0;
+            fn(along, (i + 0.5) * pitch, [=](double t) { return sign * amplitude * std::cos(M_PI * (t / pitch - 0.5) + M_PI * i); });
+        }
+}
+
+}  // namespace
+
 Mesh ribbon_weave(int n, double pitch, double width, double amplitude, int segments) {
     Mesh m;
     const double length = n * pitch;
-    for (int along = 0; along < 2; ++along)
-        for (int i = 0; i < n; ++i) {
-            const double across = (i + 0.5) * pitch;
-            // Warp i (along x) is over weft j at x = (j + 0.5) pitch where i + j is even; weft j the other way.
-            const double sign = along == 0 ? 1.0 : -1.0;
-            const int first = static_cast<int>(m.vertices.size());
-            for (int k = 0; k <= segments; ++k) {
-                const double t = length * k / segments;
-                const double z = sign * amplitude * std::cos(M_PI * (t / pitch - 0.5) + M_PI * i);
-                for (int s = 0; s < 3; ++s) {
-                    const double c = across + (s - 1) * 0.5 * width;
-                    m.vertices.push_back(along == 0 ? Vec3(t, c, z) : Vec3(c, t, z));
+    for_each_weave_thread(n, pitch, amplitude, [&](int along, double across, auto z_at) {
+        const int first = static_cast<int>(m.vertices.size());
+        for (int k = 0; k <= segments; ++k) {
+            const double t = length * k / segments, z = z_at(t);
+            for (int s = 0; s < 3; ++s) {
+                const double c = across + (s - 1) * 0.5 * width;
+                m.vertices.push_back(along == 0 ? Vec3(t, c, z) : Vec3(c, t, z));
+            }
+        }
+        for (int k = 0; k < segments; ++k)
+            for (int s = 0; s < 2; ++s) {
+                const int a = first + 3 * k + s, b = a + 1, c = a + 3, d = a + 4;
+                // Faces up: (t, across) is right-handed for warps, left-handed for wefts.
+                if (along == 0) {
+                    m.faces.push_back({a, c, d});
+                    m.faces.push_back({a, d, b});
+                } else {
+                    m.faces.push_back({a, b, d});
+                    m.faces.push_back({a, d, c});
                 }
             }
-            for (int k = 0; k < segments; ++k)
-                for (int s = 0; s < 2; ++s) {
-                    const int a = first + 3 * k + s, b = a + 1, c = a + 3, d = a + 4;
-                    // Faces up: (t, across) is right-handed for warps, left-handed for wefts.
-                    if (along == 0) {
-                        m.faces.push_back({a, c, d});
-                        m.faces.push_back({a, d, b});
-                    } else {
-                        m.faces.push_back({a, b, d});
-                        m.faces.push_back({a, d, c});
-                    }
-                }
+    });
+    return m;
+}
+
+Mesh round_weave(int n, double pitch, double half_width, double half_height, double amplitude, int sides, int segments) {
+    Mesh m;
+    const double length = n * pitch;
+    for_each_weave_thread(n, pitch, amplitude, [&](int along, double across, auto z_at) {
+        const int first = static_cast<int>(m.vertices.size());
+        auto point = [&](double t, double c, double z) { return along == 0 ? Vec3(t, c, z) : Vec3(c, t, z); };
+        for (int k = 0; k <= segments; ++k) {
+            const double t = length * k / segments, z = z_at(t);
+            for (int s = 0; s < sides; ++s) {
+                const double a = 2.0 * M_PI * (s + 0.5) / sides;
+                m.vertices.push_back(point(t, across + half_width * std::cos(a), z + half_height * std::sin(a)));
+            }
         }
+        const int caps = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(point(0.0, across, z_at(0.0)));
+        m.vertices.push_back(point(length, across, z_at(length)));
+        // Round (t, across, z) a thread is right-handed for warps and left-handed for wefts: the
+        // faces below are inward for warps (flipped) and outward for wefts.
+        std::vector<Tri> faces;
+        for (int k = 0; k < segments; ++k)
+            for (int s = 0; s < sides; ++s) {
+                const int a = first + k * sides + s, b = first + k * sides + (s + 1) % sides, c = a + sides, d = b + sides;
+                faces.push_back({a, c, d});
+                faces.push_back({a, d, b});
+            }
+        for (int s = 0; s < sides; ++s) {
+            const int s1 = (s + 1) % sides;
+            faces.push_back({caps, first + s, first + s1});
+            faces.push_back({caps + 1, first + segments * sides + s1, first + segments * sides + s});
+        }
+        for (Tri f : faces) {
+            if (along == 0) std::swap(f[1], f[2]);
+            m.faces.push_back(f);
+        }
+    });
     return m;
 }
 

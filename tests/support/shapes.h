@@ -47,6 +47,14 @@ Mesh grid_net(int n, double pitch, double bar, double h, double cell);
 /// even), `segments` quads along each ribbon and two across. Faces up (+z normal).
 Mesh ribbon_weave(int n, double pitch, double width, double amplitude, int segments);
 
+/// A plain weave of `n` warp threads along x and `n` weft threads along y, `pitch` apart, each a
+/// closed tube with an elliptic cross-section (`half_width` across, `half_height` up, `sides`
+/// vertices round it) over a length of n * pitch, flat ends, rising and falling by `amplitude` (a
+/// cosine) over and under the threads it crosses (warp i over weft j where i + j is even),
+/// `segments` cross-sections along each thread. The gap between two crossing threads is
+/// 2 (amplitude - half_height) there.
+Mesh round_weave(int n, double pitch, double half_width, double half_height, double amplitude, int sides, int segments);
+
 /// A flat disc of `radius` at z = 0 (normal +z) triangulated as a fan: `n` slivers from the centre
 /// to the rim, as CAD exporters triangulate a round face. Open.
 Mesh fan_disc(double radius, int n);
