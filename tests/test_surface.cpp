@@ -776,7 +776,9 @@ TEST(Surface, ATightWeavesThreadsAreDentedClearWhereTheyGraze) {
     // Measured at seed 1 on the tube: the share of the output's area in threads longer than the
     // swatch 0.82 before threads were dented clear, 0.93 after; test regions 0.849 - 0.893 before,
     // 0.883 - 0.922 after.
-    const Mesh weave = shapes::round_weave(8, 1.25, 0.5, 0.15, 0.2, 8, 66);
+    const int n = 8;
+    const double pitch = 1.25;
+    const Mesh weave = shapes::round_weave(n, pitch, 0.5, 0.15, 0.2, 8, 66);
     const mq::MeshAnalysis an = mq::analyse(weave);
     ASSERT_EQ(an.elements.size(), 16u);
     for (const auto& e : an.elements) {
@@ -803,7 +805,7 @@ TEST(Surface, ATightWeavesThreadsAreDentedClearWhereTheyGraze) {
         }
         const double a = mq::quilt::mesh_area(e);
         area += a;
-        if (hi_t - lo_t > 10.0 * run.r.surface.base_scale) long_area += a;
+        if (hi_t - lo_t > n * pitch * run.r.surface.base_scale) long_area += a;
     }
     std::printf("tube + tight weave: region density %.3f - %.3f, %d threads dented, %.3f of the area in threads longer than the swatch\n", lo, hi,
                 run.r.surface.threads_dented, long_area / area);

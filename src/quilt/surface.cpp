@@ -2819,9 +2819,10 @@ private:
             for (int k = 0; k < 3; ++k) nb[static_cast<std::size_t>(t[k])].push_back(t[(k + 1) % 3]);
         Mesh current = frame;
         Mesh current_embedded = embedded;
-        std::vector<double> depth(V, 0.0);  // the dent so far, per vertex
+        std::vector<double> depth(V, 0.0);  // the dent so far, per vertex, along the undented frame's normals
+        const std::vector<Vec3> normal = vertex_normals(frame);
+        const auto most = static_cast<std::size_t>(kDentMaxShare * static_cast<double>(F));
         for (int attempt = 0; attempt < kDentTries; ++attempt) {
-            const auto most = static_cast<std::size_t>(kDentMaxShare * static_cast<double>(F));
             const std::vector<char> hit = collider_.colliding_faces(current_embedded, ignore, most);
             const auto hits = static_cast<std::size_t>(std::count(hit.begin(), hit.end(), 1));
             if (hits == 0 && attempt == 0) return false;  // nothing to dent
@@ -2838,7 +2839,6 @@ private:
                         for (int w : nb[v]) next[static_cast<std::size_t>(w)] = std::max(next[static_cast<std::size_t>(w)], share);
                 add = std::move(next);
             }
-            const std::vector<Vec3> normal = vertex_normals(frame);
             current = frame;
             for (std::size_t v = 0; v < V; ++v) {
                 depth[v] += add[v] * kDentStep * thickness;
