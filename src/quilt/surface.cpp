@@ -76,6 +76,11 @@ constexpr double kFillOnPatch = 0.8;
 /// A lattice slot is empty (mend_rings) when no element's centre lies within this share of the
 /// swatch's ring spacing.
 constexpr double kMendEmpty = 0.6;
+/// A ring is mended (a lattice slot or a hole) only where the rings around it, the new one
+/// counted, stay within this share of the swatch's rings per area (ring_crowd) ...
+constexpr double kRingCrowd = 1.1;
+/// ... counted within this many ring spacings, each weighted by (1 - (d / r)^2)^2.
+constexpr double kRingCrowdReach = 2.0;
 /// A ring hole (fill_ring_holes) is a point of a mending frame farther than this many ring
 /// spacings from every element's centre (a square lattice's widest is 0.71, the bundled chain mail's
 /// 0.64 in the plane),
@@ -2324,6 +2329,7 @@ private:
                 // A slot is empty when no element's centre lies within 0.6 of the spacing (at 0.5-0.6,
                 // 3 of 273 tries fitted on the eight: the neighbouring lattice's ring is there).
                 if (std::any_of(filled.begin(), filled.end(), [&](const Vec2& q) { return (q - c).norm() < kMendEmpty * unit; })) continue;
+                if (is_ring_source(j) && ring_crowd(filled, filled_id, c, unit, lattice) > kRingCrowd) continue;
                 // A slot tried in vain stays so: mending only adds rings. Another standing ring that
                 // puts the same ring there (within a tenth of the spacing and 3 degrees), in this
                 // frame or any later one, is not tried again.
@@ -2532,6 +2538,7 @@ private:
                         offs.push_back(r * unit * o.normalized());
                 for (const Vec2& off : offs) {
                     const Vec2 hc = h + off;
+                    if (ring_crowd(filled, filled_id, hc, unit, lattice) > kRingCrowd) continue;
                     Pose moved = *offer.pose;
                     moved.t += hc - offer.centre;
                     std::vector<int> around;
@@ -2625,6 +2632,80 @@ private:
         return variant_solid_.emplace(std::make_pair(s, variant), quilt::SolidGrid(ring_variant(s, variant), kSolidCells)).first->second;
     }
 
+    /// How crowded a mending frame's rings are around `c` (frame units; `unit`: the lattice's ring
+    /// spacing there) once a ring goes in at `c`: the rings' weights, (1 - (d / r)^2)^2 within r =
+    /// kRingCrowdReach spacings, the new ring's 1 included, over the weight the swatch's own rings
+    /// give a point inside it (ring_crowd_reference). 0 when the swatch gives none, and for a
+    /// thinned swatch, whose mended rings are thickened back less where they stand close: on the
+    /// tests' tight mail (SurfaceThickMail) the guard changed which rings were mended and left one
+    /// at 0.68 of its size and a region at 1.153 (1.142 without it).
+    double ring_crowd(const std::vector<Vec2>& filled, const std::vector<int>& filled_id, const Vec2& c, double unit, const quilt::RingLattice& lattice) {
+        if (sw_.thinned > 0.0) return 0.0;
+        const double reference = ring_crowd_reference(lattice);
+        if (!(reference > 0.0) || !(unit > 0.0)) return 0.0;
+        const double r2 = std::pow(kRingCrowdReach * unit, 2);
+        double w = 1.0;
+        for (std::size_t i = 0; i < filled.size(); ++i) {
+            const double t2 = (filled[i] - c).squaredNorm() / r2;
+            if (t2 < 1.0 && is_ring_source(elems_[static_cast<std::size_t>(filled_id[i])].source)) w += (1.0 - t2) * (1.0 - t2);
+        }
+        return w / reference;
+    }
+    /// The weight ring_crowd gives a point of the swatch, from the swatch's rings, averaged over
+    /// the points (a grid of an eighth of the spacing) whose whole reach lies inside the box of the
+    /// rings' centres: the swatch's rings per area as the guard counts them, edge effects and all
+    /// (a count in a window off the lattice's period was 6% high on a rectangular mail). A swatch
+    /// too small for that takes its rings per area in the density window (kDensityInset), each ring
+    /// counted by its share of area there, times the weight's integral, pi r^2 / 3.
+    double ring_crowd_reference(const quilt::RingLattice& lattice) {
+        if (ring_crowd_reference_ >= 0.0) return ring_crowd_reference_;
+        ring_crowd_reference_ = 0.0;
+        const double spacing = lattice.spacing;
+        if (!(spacing > 0.0)) return 0.0;
+        const double r = kRingCrowdReach * spacing;
+        std::vector<Vec2> centres;
+        Eigen::AlignedBox2d box;
+        for (std::size_t e = 0; e < lattice.centre.size(); ++e)
+            if (is_ring_source(static_cast<int>(e))) {
+                centres.push_back(lattice.centre[e]);
+                box.extend(lattice.centre[e]);
+            }
+        if (centres.empty()) return 0.0;
+        const Vec2 lo = box.min() + Vec2::Constant(r), hi = box.max() - Vec2::Constant(r);
+        if ((lo.array() < hi.array()).all()) {
+            const double step = spacing / 8.0;
+            double sum = 0.0;
+            long n = 0;
+            for (double y = lo.y(); y <= hi.y(); y += step)
+                for (double x = lo.x(); x <= hi.x(); x += step) {
+                    for (const Vec2& c : centres) {
+                        const double t2 = (c - Vec2(x, y)).squaredNorm() / (r * r);
+                        if (t2 < 1.0) sum += (1.0 - t2) * (1.0 - t2);
+                    }
+                    ++n;
+                }
+            ring_crowd_reference_ = sum / static_cast<double>(n);
+            return ring_crowd_reference_;
+        }
+        const double mx = quilt::kDensityInset * sw_.box.size().x(), my = quilt::kDensityInset * sw_.box.size().y();
+        const double x0 = sw_.box.min.x() + mx, x1 = sw_.box.max.x() - mx, y0 = sw_.box.min.y() + my, y1 = sw_.box.max.y() - my;
+        double count = 0.0;
+        for (std::size_t e = 0; e < sw_.elements.size(); ++e) {
+            if (!is_ring_source(static_cast<int>(e))) continue;
+            const Mesh& m = sw_.elements[e];
+            double in = 0.0, all = 0.0;
+            for (std::size_t f = 0; f < m.faces.size(); ++f) {
+                const double a = face_area(m, f);
+                const Vec3 c = (m.vertices[static_cast<std::size_t>(m.faces[f][0])] + m.vertices[static_cast<std::size_t>(m.faces[f][1])] +
+                                m.vertices[static_cast<std::size_t>(m.faces[f][2])]) / 3.0;
+                all += a;
+                if (c.x() >= x0 && c.x() <= x1 && c.y() >= y0 && c.y() <= y1) in += a;
+            }
+            if (all > 0.0) count += in / all;
+        }
+        ring_crowd_reference_ = count / std::max((x1 - x0) * (y1 - y0), 1e-300) * r * r * std::acos(-1.0) / 3.0;
+        return ring_crowd_reference_;
+    }
     /// Tries fill_ring_holes may still embed: kHoleBudget per ring standing when mending started,
     /// and no more than kHoleTriesFree per ring standing (at least 1,000) and kHoleTriesPerRing for
     /// each ring it put in (chain mail on spot takes 19 tries per ring put in; where rings rarely
@@ -3693,6 +3774,7 @@ private:
     TriangleIndex index_;
     quilt::KernelParams params_;
     quilt::FillSetup fill_;
+    double ring_crowd_reference_ = -1.0;  ///< ring_crowd_reference (computed on first use)
     /// The swatch's threads running along x (0) and along y (1) (prepare_thread_sets).
     struct ThreadSet {
         std::vector<int> ids;  ///< swatch elements
