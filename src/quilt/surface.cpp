@@ -77,7 +77,11 @@ constexpr double kFillOnPatch = 0.8;
 /// swatch's ring spacing.
 constexpr double kMendEmpty = 0.6;
 /// A ring is mended (a lattice slot or a hole) only where the rings around it, the new one
-/// counted, stay within this share of the swatch's rings per area (ring_crowd) ...
+/// counted, stay within this share of the swatch's rings per area (ring_crowd). Session 48, seed
+/// 1: a rectangular 4-in-1 mail on an icosphere 1.121-1.165 -> 1.028-1.062, a loose one on the
+/// eight 1.096-1.191 -> 1.089-1.158; the bundled mail's lowest regions on the shared meshes move
+/// by -0.015 to +0.011 (fandisk 0.794 -> 0.805, the bunny 0.870 -> 0.855). At 1.25 the
+/// rectangular mail keeps 1.073-1.119 in the test's regions (docs/surface.md step 10) ...
 constexpr double kRingCrowd = 1.1;
 /// ... counted within this many ring spacings, each weighted by (1 - (d / r)^2)^2.
 constexpr double kRingCrowdReach = 2.0;
