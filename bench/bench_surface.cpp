@@ -102,6 +102,8 @@ void run_row(benchmark::State& state, const char* swatch_name, double target_fac
     state.counters["patches"] = r.report.patches;
     state.counters["dens_min"] = r.surface.region_density_min;
     state.counters["dens_max"] = r.surface.region_density_max;
+    state.counters["count_min"] = r.surface.region_count_density_min;  // 0 for threads (not counted)
+    state.counters["count_max"] = r.surface.region_count_density_max;
     state.counters["peak_MB"] = peak_rss_mb();
     for (const auto& [stage, s] : r.report.seconds) state.counters["s_" + stage] = s;
 }

@@ -64,8 +64,12 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_EQ(count(sa.substr(at), "\nf "), 634);
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
-    for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "base_faces", "symmetry"})
+    for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "region_count_density_min",
+                            "region_count_density_max", "base_faces", "symmetry"})
         EXPECT_TRUE(j.at("surface").contains(key)) << key;
+    // Rivets are counted (whole elements), and the count's regions bracket the whole output's.
+    EXPECT_GT(j.at("surface").at("region_count_density_min").get<double>(), 0.0);
+    EXPECT_LE(j.at("surface").at("region_count_density_min").get<double>(), j.at("surface").at("region_count_density_max").get<double>());
     // Every rivet measured against its swatch element, none off by more than 1.5 (the acceptance).
     EXPECT_EQ(j.at("surface").at("elements_sized").get<int>(), j.at("elements").get<int>());
     EXPECT_EQ(j.at("surface").at("elements_off_size").get<int>(), 0);

@@ -131,6 +131,15 @@ struct SurfaceQualityReport {
     /// to the region's area-weighted centre): where to look first when the decoration is sparse.
     Vec3 region_density_min_at = Vec3::Zero();
     int regions = 0;
+    /// Element density by count over the same regions: each element counted once, in the region
+    /// of the base point under its centre (its faces' feet, area-weighted, closest point on the
+    /// base), weighed by its swatch element's area at the run's and the field's scale, over the
+    /// region's base area and the swatch's count density (its elements whose centres lie in the
+    /// swatch's density window). Blind to what the shell does to an element's area (a lowered
+    /// shell flattens rings; a thin part's wider middle surface enlarges them). 0 when not
+    /// measured: threads and pieces of strands (cut to any length) have no count.
+    double region_count_density_min = 0.0;
+    double region_count_density_max = 0.0;
     /// Each element's size over its swatch element's at the run's scale (and the guidance field's
     /// local scale): the square root of the area ratio, measured before a thinned swatch's
     /// elements are thickened back. Threads and runs with a user height are not measured.

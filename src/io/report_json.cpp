@@ -127,6 +127,8 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"region_density_mid_min", s.region_density_mid_min},
                         {"region_density_mid_max", s.region_density_mid_max},
                         {"region_density_min_at", {s.region_density_min_at.x(), s.region_density_min_at.y(), s.region_density_min_at.z()}},
+                        {"region_count_density_min", s.region_count_density_min},
+                        {"region_count_density_max", s.region_count_density_max},
                         {"regions", s.regions},
                         {"element_size_min", s.element_size_min},
                         {"element_size_max", s.element_size_max},
