@@ -67,7 +67,7 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "region_count_density_min",
                             "region_count_density_max", "base_faces", "symmetry"})
         EXPECT_TRUE(j.at("surface").contains(key)) << key;
-    // Rivets are counted (whole elements), and the count's regions bracket the whole output's.
+    // Rivets are counted (whole elements): the count is reported, its range in order.
     EXPECT_GT(j.at("surface").at("region_count_density_min").get<double>(), 0.0);
     EXPECT_LE(j.at("surface").at("region_count_density_min").get<double>(), j.at("surface").at("region_count_density_max").get<double>());
     // Every rivet measured against its swatch element, none off by more than 1.5 (the acceptance).

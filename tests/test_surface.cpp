@@ -105,6 +105,7 @@ void expect_whole_and_disjoint(const SurfaceRun& run) {
 /// The tests' density regions: voxel cells of two footprints (at the run's scale), and the
 /// swatch's element area per area in its window inset by 15% (as the planar measure).
 struct VoxelRegions {
+    Mesh swatch;  ///< the run's swatch, normalised (normalize_swatch)
     double swatch_density = 0.0;
     double fp_area = 0.0;  ///< a footprint's area on the base
     double cell = 1.0;
@@ -114,7 +115,9 @@ struct VoxelRegions {
 };
 
 VoxelRegions voxel_regions(const SurfaceRun& run) {
-    const Mesh sw = mq::normalize_swatch(run.swatch);
+    VoxelRegions vr;
+    vr.swatch = mq::normalize_swatch(run.swatch);
+    const Mesh& sw = vr.swatch;
     const mq::Box3 sb = mq::bounding_box(sw);
     const double mx = 0.15 * sb.size().x(), my = 0.15 * sb.size().y();
     double sa = 0.0;
@@ -122,7 +125,6 @@ VoxelRegions voxel_regions(const SurfaceRun& run) {
         const Vec3 c = (sw.vertices[sw.faces[f][0]] + sw.vertices[sw.faces[f][1]] + sw.vertices[sw.faces[f][2]]) / 3.0;
         if (c.x() >= mx && c.x() <= sb.size().x() - mx && c.y() >= my && c.y() <= sb.size().y() - my) sa += face_area(sw, f);
     }
-    VoxelRegions vr;
     vr.swatch_density = sa / ((sb.size().x() - 2 * mx) * (sb.size().y() - 2 * my));
     const double s = run.r.surface.base_scale;
     vr.fp_area = sb.size().x() * sb.size().y() * s * s;
@@ -148,7 +150,7 @@ std::pair<double, double> region_density(const SurfaceRun& run) {
     std::vector<Vec3> rim;
     for (const auto& [e, n] : edge_count)
         if (n == 1) rim.push_back(0.5 * (base.vertices[static_cast<std::size_t>(e.first)] + base.vertices[static_cast<std::size_t>(e.second)]));
-    const Mesh sw = mq::normalize_swatch(run.swatch);
+    const Mesh& sw = vr.swatch;
     double element_diag = 0.0;
     {
         int n = 0;

@@ -134,8 +134,8 @@ struct SurfaceQualityReport {
     /// Element density by count over the same regions: each element counted once, in the region
     /// of the base point under its centre (its faces' feet, area-weighted, closest point on the
     /// base), weighed by its swatch element's area at the run's and the field's scale, over the
-    /// region's base area and the swatch's count density (its elements whose centres lie in the
-    /// swatch's density window). Blind to what the shell does to an element's area (a lowered
+    /// region's base area and the swatch's density (swatch_density's window, unstretched by
+    /// --height as the count's weights are). Blind to what the shell does to an element's area (a lowered
     /// shell flattens rings; a thin part's wider middle surface enlarges them). 0 when not
     /// measured: threads and pieces of strands (cut to any length) have no count.
     double region_count_density_min = 0.0;
