@@ -65,7 +65,7 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "region_count_density_min",
-                            "region_count_density_max", "base_faces", "symmetry"})
+                            "region_count_density_max", "base_faces", "symmetry", "rings_swapped"})
         EXPECT_TRUE(j.at("surface").contains(key)) << key;
     // Rivets are counted (whole elements): the count is reported, its range in order.
     EXPECT_GT(j.at("surface").at("region_count_density_min").get<double>(), 0.0);

@@ -716,13 +716,15 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     for (int c : rl.links) ++histogram[c];
     const std::string h = link_histogram_text(histogram);
     const auto [lo, hi] = region_density(run);
-    std::printf("eight chain mail: %d mended (%d into holes, %d of them tilted, %d enlarged), region density %.3f - %.3f; %s\n",
-                run.r.surface.elements_mended, run.r.surface.ring_holes_filled, run.r.surface.ring_holes_tilted, run.r.surface.ring_holes_enlarged, lo,
-                hi, h.c_str());
+    std::printf("eight chain mail: %d mended (%d into holes, %d of them tilted, %d enlarged; %d swaps), region density %.3f - %.3f; %s\n",
+                run.r.surface.elements_mended, run.r.surface.ring_holes_filled, run.r.surface.ring_holes_tilted, run.r.surface.ring_holes_enlarged,
+                run.r.surface.rings_swapped, lo, hi, h.c_str());
     RecordProperty("links", h);
-    // Measured at seed 1: 187 mended, 129 into holes, 67 tilted, 10 enlarged, 511 linked with 4,
-    // region density 0.957-1.098 (session 49: mended rings counted on the surface, which took the
-    // densest region by count from 1.188 to 1.126). Before: 229 mended, 165 into holes, 88 tilted, 14 enlarged (session 40),
+    // Measured at seed 1: 231 mended, 103 into holes, 53 tilted, 4 enlarged, 34 swaps, 1,061 rings,
+    // 522 linked with 4, region density 0.972-1.088 (session 50: slots blocked by one ring of
+    // another lattice swapped). Before: 187 mended, 129 into holes, 67 tilted, 10 enlarged, 511
+    // linked with 4, region density 0.957-1.098 (session 49: mended rings counted on the surface,
+    // which took the densest region by count from 1.188 to 1.126). Before: 229 mended, 165 into holes, 88 tilted, 14 enlarged (session 40),
     // 581 linked with 4, region density 0.994-1.135. Before: 1,091 rings, 227 mended (163 of them into holes between lattices, 92 of
     // those tilted, session 38), 568 linked with 4, none with none; region density 0.964-1.140.
     // Before tilting: 1,060 rings, 196 mended, 132 into holes, 537 linked with 4, 0.948-1.135
@@ -741,8 +743,13 @@ TEST(Surface, ChainMailOnADoublyCurvedBaseContinuesAndMendsItsLattice) {
     EXPECT_LT(run.r.surface.ring_holes_tilted, run.r.surface.ring_holes_filled);
     // ... and rings enlarged to reach their neighbours' links (kRingSizes), still within the sizes
     // checked above.
-    EXPECT_GT(run.r.surface.ring_holes_enlarged, 5);
+    EXPECT_GT(run.r.surface.ring_holes_enlarged, 1);
     EXPECT_LT(run.r.surface.ring_holes_enlarged, run.r.surface.ring_holes_filled / 4);
+    // Slots blocked by one ring of another lattice took two rings of theirs in its place (step 10,
+    // "Swapped blockers"): each swap mends at least two rings into lattice slots, and no ring it
+    // took away leaves another loose (the histogram below) or the mail intersecting (above).
+    EXPECT_GT(run.r.surface.rings_swapped, 0);
+    EXPECT_GE(run.r.surface.elements_mended - run.r.surface.ring_holes_filled, 2 * run.r.surface.rings_swapped);
     EXPECT_GT(run.r.surface.rings_unlinked_removed, 0);
     EXPECT_GE(histogram[4], 0.46 * count) << h;
     EXPECT_EQ(histogram[0], 0) << "a ring of the chain mail is loose; " << h;

@@ -111,6 +111,7 @@ struct SurfaceQualityReport {
     int ring_holes_filled = 0;     ///< of them, rings put into holes between lattices (off every lattice's slots)
     int ring_holes_tilted = 0;     ///< of those, rings tilted from their swatch ring's pose to fit
     int ring_holes_enlarged = 0;   ///< of those, rings put in at 1.1 of their swatch ring's size (reaching their neighbours' links)
+    int rings_swapped = 0;         ///< lattice slots blocked by one ring of another lattice: that ring replaced by two of this one (each adds one ring)
     int elements_enlarged = 0;     ///< placed elements the patch's plan left below the size floor (0.7), enlarged to 0.85 of their size
     int rings_unlinked_removed = 0;  ///< interlocking swatches: rings that linked with no other ring, removed before mending
     int symmetry = 0;              ///< N of the N-direction field used

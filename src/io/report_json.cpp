@@ -118,6 +118,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"ring_holes_filled", s.ring_holes_filled},
                         {"ring_holes_tilted", s.ring_holes_tilted},
                         {"ring_holes_enlarged", s.ring_holes_enlarged},
+                        {"rings_swapped", s.rings_swapped},
                         {"rings_unlinked_removed", s.rings_unlinked_removed},
                         {"symmetry", s.symmetry},
                         {"scale", s.scale},
