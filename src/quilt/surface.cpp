@@ -160,6 +160,8 @@ constexpr long kHoleTriesPerRing = 200;
 /// vertices: a scan's missing triangles, not a tube's open end.
 constexpr double kFillHoleExtent = 0.25;
 constexpr int kFillHoleVertices = 100;
+/// A mended ring may link with the rings whose centres lie within this many spacings of its own.
+constexpr double kMendLinkReach = 1.6;
 /// A mended ring keeps at least this share of its swatch element's size (square root of area).
 constexpr double kMendMinSize = 0.75;
 /// ... and this much of its swatch ring's diameter (mend_slot).
@@ -2353,15 +2355,16 @@ private:
                 Vec3 at, dir;
                 double tolerance = 0.0;
                 if (!slot_on_surface(flat, locator, c, angle, unit, &at, &dir, &tolerance) || mend_failed(at, dir, tolerance)) continue;
-                std::vector<int> around;  // rings the new one may link with
-                for (std::size_t i = 0; i < filled.size(); ++i)
-                    if ((filled[i] - c).norm() < 1.6 * unit && is_ring_source(elems_[static_cast<std::size_t>(filled_id[i])].source)) around.push_back(filled_id[i]);
+                const std::vector<int> around = rings_near(filled, filled_id, c, kMendLinkReach * unit);  // rings the new one may link with
                 bool lasting = true;
-                if (Pose placed; mend_slot(flat, locator, hs, local, pose, j, next.shift, c, around, &anchors, &embedded, &placed, &lasting)) {
+                Mesh plain;  // the slot's ring as the lattice puts it, embedded (swap_blocker)
+                if (Pose placed; mend_slot(flat, locator, hs, local, pose, j, next.shift, c, around, &anchors, &embedded, &placed, &lasting, nullptr, nullptr,
+                                           nullptr, 1, &plain)) {
                     filled.push_back(c);
                     filled_id.push_back(static_cast<int>(elems_.size()) - 1);
                     poses.push_back(placed);
-                } else if (lasting && is_ring_source(j) && swap_blocker(flat, locator, hs, local, R, lattice, pose, j, next.shift, c, unit, filled, filled_id, poses)) {
+                } else if (lasting && is_ring_source(j) && swap_blocker(flat, locator, hs, local, R, lattice, pose, j, next.shift, c, unit, plain, filled, filled_id,
+                                                                        poses)) {
                     // The slot's ring went in, and another, in place of the one ring that blocked it.
                 } else if (lasting) {
                     mend_failed_.push_back({at, dir});
@@ -2378,6 +2381,15 @@ private:
         fill_ring_holes(flat, locator, hs, local, R, lattice, ring_poses, filled, filled_id, &anchors, &embedded);
     }
 
+    /// The ring elements among a mending frame's elements (`ids`, centres `at` in the frame) whose
+    /// centres lie within `reach` of `c`.
+    std::vector<int> rings_near(const std::vector<Vec2>& at, const std::vector<int>& ids, const Vec2& c, double reach) const {
+        std::vector<int> near;
+        for (std::size_t i = 0; i < at.size(); ++i)
+            if ((at[i] - c).norm() < reach && is_ring_source(elems_[static_cast<std::size_t>(ids[i])].source)) near.push_back(ids[i]);
+        return near;
+    }
+
     /// Beyond the paper: a lattice slot blocked by rings of another lattice (session 50). Where two
     /// lattices meet off step, a ring of one stands between two slots of the other, and each of
     /// those collides with it: the seam holds one ring where the lattice has two. When ring `j`'s
@@ -2389,30 +2401,12 @@ private:
     /// otherwise everything is put back as it stood. Each swap adds one ring (`rings_swapped`, the
     /// new rings counted among `elements_mended`).
     bool swap_blocker(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, double R,
-                      const quilt::RingLattice& lattice, const Pose& pose, int j, const Vec2& shift, const Vec2& c, double unit,
+                      const quilt::RingLattice& lattice, const Pose& pose, int j, const Vec2& shift, const Vec2& c, double unit, const Mesh& plain,
                       std::vector<Vec2>& filled, std::vector<int>& filled_id, std::vector<Pose>& poses) {
-        if (sw_.thinned > 0.0) return false;  // a thinned mail's rings are thickened back where they stand apart
-        // The slot's ring as the lattice puts it (no turn, no shrink), at its size on the surface.
-        const Mesh& src = sw_.elements[static_cast<std::size_t>(j)];
-        Mesh m = src;
-        auto pose_at = [&](double f) {
-            const Vec2 b0 = pose.A * shift + pose.t;
-            const Vec2 g = pose.A * area_centroid(src).head<2>() + b0;
-            for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-                const Vec2 q = f * (pose.A * src.vertices[v].head<2>() + b0 - g) + g;
-                m.vertices[v] = Vec3(q.x(), q.y(), src.vertices[v].z());
-            }
-        };
-        pose_at(1.0);
-        std::vector<SurfacePoint> anchors;
-        Mesh embedded;
-        double fit = 1.0;
-        if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, &anchors, &embedded, &fit)) return false;
-        if (fit != 1.0) {
-            pose_at(fit);
-            if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, &anchors, &embedded)) return false;
-        }
-        const std::vector<int> hit = collider_.colliding(embedded);
+        // `plain`: the slot's ring as the lattice puts it (no turn, no shrink), embedded at its size
+        // on the surface by mend_slot; empty when that pose was refused before its collision test.
+        if (sw_.thinned > 0.0 || plain.faces.empty()) return false;  // a thinned mail's rings are thickened back where they stand apart
+        const std::vector<int> hit = collider_.colliding(plain);
         if (hit.empty() || hit.size() > kSwapMost) return false;
         std::vector<std::size_t> slot;  // the blockers' entries in filled, ascending
         for (std::size_t i = 0; i < filled_id.size(); ++i) {
@@ -2467,9 +2461,7 @@ private:
             return false;
         };
         auto place = [&](const Pose& p, int ring, const Vec2& sh, const Vec2& at) {
-            std::vector<int> around;
-            for (std::size_t i = 0; i < room.size(); ++i)
-                if ((room[i] - at).norm() < 1.6 * unit && is_ring_source(elems_[static_cast<std::size_t>(room_id[i])].source)) around.push_back(room_id[i]);
+            const std::vector<int> around = rings_near(room, room_id, at, kMendLinkReach * unit);
             std::vector<SurfacePoint> a;
             Mesh em;
             Pose placed;
@@ -2515,10 +2507,8 @@ private:
         for (int id : linked) {
             const int need = ring_need_[static_cast<std::size_t>(elems_[static_cast<std::size_t>(id)].source)];
             const Vec2 at = room[static_cast<std::size_t>(std::find(room_id.begin(), room_id.end(), id) - room_id.begin())];
-            std::vector<int> near;
-            for (std::size_t i = 0; i < room.size(); ++i)
-                if (room_id[i] != id && (room[i] - at).norm() < 2.0 * unit && is_ring_source(elems_[static_cast<std::size_t>(room_id[i])].source))
-                    near.push_back(room_id[i]);
+            std::vector<int> near = rings_near(room, room_id, at, 2.0 * unit);
+            near.erase(std::remove(near.begin(), near.end(), id), near.end());
             if (links_with(elems_[static_cast<std::size_t>(id)].embedded, near, need) < need) return undo();
         }
         filled = std::move(room);
@@ -2710,9 +2700,7 @@ private:
                     if (ring_crowd(filled, filled_id, hc, unit, lattice, flat, local) > kRingCrowd) continue;
                     Pose moved = *offer.pose;
                     moved.t += hc - offer.centre;
-                    std::vector<int> around;
-                    for (std::size_t i = 0; i < filled.size(); ++i)
-                        if ((filled[i] - hc).norm() < 1.6 * unit && is_ring_source(elems_[static_cast<std::size_t>(filled_id[i])].source)) around.push_back(filled_id[i]);
+                    const std::vector<int> around = rings_near(filled, filled_id, hc, kMendLinkReach * unit);
                     bool lasting = true;
                     Pose placed;
                     if (mend_slot(flat, locator, hs, local, moved, offer.slot->source, offer.slot->shift, hc, around, anchors, embedded, &placed, &lasting, &turns,
@@ -2976,11 +2964,12 @@ private:
     /// passes its own `turns`, a quick `clash` test that refuses a pose before it is embedded,
     /// `fit_io`, the map's scale for the ring's size, found once per hole (0: not yet), and
     /// `variants`: the ring's tilted variants (ring_variant) tried in turn after it, each in every
-    /// pose.
+    /// pose. `plain`, if given, receives the embedding of the ring as `pose` puts it (unturned, at
+    /// its size) when that pose reaches the collision test (swap_blocker asks what it hits).
     bool mend_slot(const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs, double local, const Pose& pose, int j,
                    const Vec2& shift, const Vec2& c, const std::vector<int>& around, std::vector<SurfacePoint>* anchors, Mesh* embedded, Pose* placed,
                    bool* lasting, const std::vector<double>* turns = nullptr, const Clash* clash = nullptr, double* fit_io = nullptr,
-                   int variants = 1) {
+                   int variants = 1, Mesh* plain = nullptr) {
         static const std::vector<double> kTurns{0.0, 0.05, -0.05, 0.1, -0.1};
         *lasting = true;  // every pose collided or folded: more rings will not change that
         const double want = std::max(mesh_area(sw_.elements[static_cast<std::size_t>(j)]) * scale_ * scale_ * local * local, 1e-300);
@@ -3056,6 +3045,7 @@ private:
                         continue;
                     }
                     if (!is_ring_source(j) && off_size(*embedded, j, local)) continue;
+                    if (plain && variant == 0 && size == 0 && turn == 0.0) *plain = *embedded;  // swap_blocker asks what it hits
                     if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
                     if (!is_ring_source(j) && !keeps_clearance_3d(*embedded, local)) continue;
                     if (interlocked_ && links_with(*embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
