@@ -65,7 +65,9 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     EXPECT_DOUBLE_EQ(j.at("surface").at("coverage").get<double>(), 1.0);
     for (const char* key : {"faces", "elements", "elements_closed", "elements_removed", "seconds"}) EXPECT_TRUE(j.contains(key)) << key;
     for (const char* key : {"region_density_min", "region_density_max", "region_density_mid_min", "region_density_mid_max", "region_count_density_min",
-                            "region_count_density_max", "base_faces", "symmetry", "rings_swapped"})
+                            "region_count_density_max", "region_count_density_mid_min", "region_count_density_mid_max", "region_count_density_min_at",
+                            "region_count_density_max_at",
+                            "base_faces", "symmetry", "rings_swapped"})
         EXPECT_TRUE(j.at("surface").contains(key)) << key;
     // Rivets are counted (whole elements): the count is reported, its range in order.
     EXPECT_GT(j.at("surface").at("region_count_density_min").get<double>(), 0.0);
@@ -84,12 +86,15 @@ TEST_F(CliSurface, MainJobWritesGroupsAndReportAndIsDeterministic) {
     const meshquilt::Mesh eight = meshquilt::read_mesh(base);
     EXPECT_LT(meshquilt::TriangleIndex(eight).closest(thinnest).distance, 1e-9 * meshquilt::bounding_box(eight).size().norm()) << thinnest.transpose();
     EXPECT_GT(meshquilt::TriangleIndex(eight).closest(meshquilt::Vec3::Zero()).distance, 0.01);
-    // The closing line gives the regions' densities and the thinnest one's place, as the report has them.
-    char summary[300];
+    // The closing line gives the regions' densities (by area, on the middle surface, by count) and
+    // the thinnest one's place, as the report has them.
+    char summary[400];
     const auto& sj = j.at("surface");
-    std::snprintf(summary, sizeof summary, "regions at %.3g-%.3g of the swatch's density (%.3g-%.3g on the shell's middle surface; thinnest around %.4g, %.4g, %.4g) -> ",
+    std::snprintf(summary, sizeof summary,
+                  "regions at %.3g-%.3g of the swatch's density (%.3g-%.3g on the shell's middle surface; by count %.3g-%.3g; thinnest around %.4g, %.4g, %.4g) -> ",
                   sj.at("region_density_min").get<double>(), sj.at("region_density_max").get<double>(), sj.at("region_density_mid_min").get<double>(),
-                  sj.at("region_density_mid_max").get<double>(), sj.at("region_density_min_at")[0].get<double>(),
+                  sj.at("region_density_mid_max").get<double>(), sj.at("region_count_density_min").get<double>(),
+                  sj.at("region_count_density_max").get<double>(), sj.at("region_density_min_at")[0].get<double>(),
                   sj.at("region_density_min_at")[1].get<double>(), sj.at("region_density_min_at")[2].get<double>());
     EXPECT_NE(first.err.find(summary), std::string::npos) << first.err;
     // The scale given is the scale used, and the output file's header records it.

@@ -115,7 +115,12 @@ void add_surface_command(CLI::App& root, std::vector<Command>& commands) {
             std::cerr << "meshquilt: " << r.report.elements << " elements, " << r.report.faces << " faces"
                       << (r.surface.regions > 0 ? ", regions at " + num(r.surface.region_density_min, 3) + "-" + num(r.surface.region_density_max, 3) +
                                                       " of the swatch's density (" + num(r.surface.region_density_mid_min, 3) + "-" +
-                                                      num(r.surface.region_density_mid_max, 3) + " on the shell's middle surface; thinnest around " +
+                                                      num(r.surface.region_density_mid_max, 3) + " on the shell's middle surface" +
+                                                      (r.surface.region_count_density_max > 0
+                                                           ? "; by count " + num(r.surface.region_count_density_min, 3) + "-" +
+                                                                 num(r.surface.region_count_density_max, 3)
+                                                           : std::string()) +
+                                                      "; thinnest around " +
                                                       num(r.surface.region_density_min_at.x(), 4) +
                                                       ", " + num(r.surface.region_density_min_at.y(), 4) + ", " +
                                                       num(r.surface.region_density_min_at.z(), 4) + ")"

@@ -141,6 +141,15 @@ struct SurfaceQualityReport {
     /// measured: threads and pieces of strands (cut to any length) have no count.
     double region_count_density_min = 0.0;
     double region_count_density_max = 0.0;
+    /// The same count per area of the shell's middle surface (as region_density_mid_min): round
+    /// a thin part an element embedded at its swatch size there stands on more surface than its
+    /// base, so a decoration as dense as the swatch where it stands reads denser per base area.
+    double region_count_density_mid_min = 0.0;
+    double region_count_density_mid_max = 0.0;
+    /// Points of the base near the middles of the sparsest and the densest region by count (per
+    /// base area), as region_density_min_at.
+    Vec3 region_count_density_min_at = Vec3::Zero();
+    Vec3 region_count_density_max_at = Vec3::Zero();
     /// Each element's size over its swatch element's at the run's scale (and the guidance field's
     /// local scale): the square root of the area ratio, measured before a thinned swatch's
     /// elements are thickened back. Threads and runs with a user height are not measured.

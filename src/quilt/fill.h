@@ -101,9 +101,9 @@ struct FillSetup {
     double swatch_density = 0.0;  ///< element area per footprint area in the swatch's inset window
     double smallest_spot = 0.0; ///< a spot narrower than this (empty-disc radius) is never filled
     double gap = 0.0;           ///< clearance a filled blob keeps (the swatch's near_gap)
-    /// A spot is filled when the ground around it holds less than this share of the swatch's density:
-    /// the tolerance of the stage (planar 0.9, surface 0.85; filling up to the swatch's density made
-    /// pebbles, already denser than the swatch on average, 7-20% denser still).
+    /// A spot is filled when the ground around it holds less than this share of the swatch's density
+    /// (planar and surface 0.9; filling up to the swatch's density made pebbles, already denser than
+    /// the swatch on average, 7-20% denser still).
     double sparse = 0.9;
     /// A filled blob keeps at least this share of its swatch element's footprint and of its area
     /// (planar 0.4; the surface stage 0.5, which keeps it within its size bound of a factor 1.5).

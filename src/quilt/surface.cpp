@@ -61,8 +61,12 @@ constexpr double kMaxSizeDrift = 1.02;
 constexpr double kLatticeSizeDrift = 1.3;
 
 /// A bald spot is filled where the ground around it holds less than this share of the swatch's
-/// density: the 15% the surface stage allows (fill_patch; quilt/fill.h).
-constexpr double kFillSparse = 0.85;
+/// density (fill_patch; quilt/fill.h), the standing elements claiming ground as claimed_ground
+/// widens them. 0.85 (the 15% the stage allows) while they claimed their frame copies only, which
+/// on thin parts read sparse: at 0.9 pebbles grew denser there still. With the claims, 0.9 keeps
+/// rivets' sparsest region in the bar (the camelhead 0.833 -> 0.903 by count) and pebbles' densest
+/// too (fertility 1.134 -> 1.101; docs/surface.md, step 8, "Fills counted on the base").
+constexpr double kFillSparse = 0.9;
 /// The rasters of a patch's footprint (bald spots, thread gaps) have at most about this many
 /// pixels: their pixel follows the swatch's gaps, and the public snowflake swatch (elements 0.04
 /// apart in a footprint 145 wide) asked for 37 million per patch, which took over ten minutes on
@@ -73,6 +77,9 @@ constexpr double kMaxRasterPixels = 250000.0;
 constexpr double kFillMinArea = 0.5;
 /// ... and only where at least this share of the density window lies on the patch.
 constexpr double kFillOnPatch = 0.8;
+/// The shell's widening under a standing blob (its middle surface's area over its base's) that
+/// its claim on the ground of a patch frame follows, at most this factor either way (claimed_ground).
+constexpr double kClaimWidening = 2.0;
 /// A lattice slot is empty (mend_rings) when no element's centre lies within this share of the
 /// swatch's ring spacing.
 constexpr double kMendEmpty = 0.6;
@@ -391,6 +398,9 @@ public:
         prepare_base(base);
         stage_seconds_["prepare base"] += seconds_since(t0);
         build_shell();
+        const std::vector<double> mid = middle_areas();
+        widening_.resize(mid.size());
+        for (std::size_t f = 0; f < mid.size(); ++f) widening_[f] = base_.area[f] > 0.0 && mid[f] > 0.0 ? mid[f] / base_.area[f] : 1.0;
     }
 
     SurfaceQuiltResult run() {
@@ -1925,6 +1935,30 @@ private:
         return true;
     }
 
+    /// The ground standing element `fe` claims in its patch's frame, as fill_patch judges density
+    /// and spots: a whole blob's frame copy widened in xy about its middle by the square root of
+    /// the shell's widening under it (widening_, averaged over its vertices' faces, within
+    /// kClaimWidening). A blob is embedded at its swatch size on the shell's middle surface
+    /// (embed_sized); round a thin part that surface is wider than the base, so the blob covers less
+    /// of the base and its frame, and fills judged by the frame copy alone made up the difference:
+    /// pebbles per base area up to 1.23 times the swatch's on thin parts (the bunny's ear, the
+    /// armadillo's hands, by count), 0.88-0.95 on their middle surface. Judged by the claim, fills
+    /// keep the swatch's density per base area as the patches' elements do (docs/surface.md, step
+    /// 8, "Fills counted on the base"). Other elements (rings, strands; cut or partly off the
+    /// patch) claim their frame copy.
+    Mesh claimed_ground(const FrameElement& fe) const {
+        const SurfElement& e = elems_[static_cast<std::size_t>(fe.id)];
+        if (!fe.whole || e.source < 0 || !quilt::is_blob_source(sw_, e.source) || e.anchors.empty()) return fe.mesh;
+        double w = 0.0;
+        for (const SurfacePoint& sp : e.anchors) w += widening_[static_cast<std::size_t>(sp.face)];
+        const double g = std::sqrt(std::clamp(w / static_cast<double>(e.anchors.size()), 1.0 / kClaimWidening, kClaimWidening));
+        Mesh claim = fe.mesh;
+        const Box3 b = bounding_box(claim);
+        const Vec3 c = 0.5 * (b.min + b.max);
+        for (Vec3& v : claim.vertices) v = Vec3(c.x() + g * (v.x() - c.x()), c.y() + g * (v.y() - c.y()), v.z());
+        return claim;
+    }
+
     /// Beyond the paper: bald spots of the patch's footprint (where its new elements collided or
     /// lost their merges) are filled with blobs right after the patch, in its frame, as the planar
     /// stage fills its output (quilt/fill.h: fill_spots): every element near the patch is mapped into
@@ -1945,15 +1979,17 @@ private:
         std::vector<Box3> boxes;
         std::deque<Mesh> standing;  // frame meshes, for the clearance of fills (stable addresses)
         std::vector<const Mesh*> standing_ptrs;
-        auto stand = [&](const Mesh& m) {
+        // `claims`: the ground the element claims, in the coverage that judges density and spots
+        // (claimed_ground); the element itself is what fills keep clear of.
+        auto stand = [&](const Mesh& m, const Mesh& claims) {
             if (m.faces.empty()) return;
             standing.push_back(m);
             standing_ptrs.push_back(&standing.back());
-            cov.add(m);
+            cov.add(claims);
             hulls.push_back(quilt::xy_hull(m));
             boxes.push_back(bounding_box(m));
         };
-        for (const FrameElement& fe : frame_elements(flat, hs)) stand(fe.mesh);
+        for (const FrameElement& fe : frame_elements(flat, hs)) stand(fe.mesh, claimed_ground(fe));
         cov.cover_outside(ground);  // distances end at the patch's border
         std::vector<SurfacePoint> anchors;
         Mesh embedded;
@@ -2038,7 +2074,7 @@ private:
                     for (const Mesh& piece : quilt::split_components(m)) {
                         if (!embed_sized(piece, source, false, flat, locator, hs, local, nullptr, &anchors, &embedded)) continue;
                         add_element(std::move(anchors), piece.faces, std::move(embedded), source, true);
-                        stand(piece);
+                        stand(piece, piece);
                         ++report_.strand_pieces;
                     }
                     return;
@@ -2046,7 +2082,7 @@ private:
                 // Embedded again: the last `fits` may have been a larger shape that did not fit.
                 embed_sized(m, source, true, flat, locator, hs, local, nullptr, &anchors, &embedded);
                 add_element(std::move(anchors), m.faces, std::move(embedded), source);
-                stand(m);
+                stand(m, m);
             });
     }
 
@@ -3862,11 +3898,10 @@ private:
         std::vector<double> base_area(static_cast<std::size_t>(regions), 0.0), elem_area(static_cast<std::size_t>(regions), 0.0),
             mid_area(static_cast<std::size_t>(regions), 0.0);
         std::vector<Vec3> middle(static_cast<std::size_t>(regions), Vec3::Zero());
-        const std::vector<double> mid = middle_areas();
         for (std::size_t f = 0; f < F; ++f)
             if (!strip[f]) {
                 base_area[static_cast<std::size_t>(region[f])] += base_.area[f];
-                mid_area[static_cast<std::size_t>(region[f])] += mid[f];
+                mid_area[static_cast<std::size_t>(region[f])] += widening_[f] * base_.area[f];
                 middle[static_cast<std::size_t>(region[f])] += base_.area[f] * base_.centroid[f];
             }
         for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
@@ -3889,40 +3924,49 @@ private:
             ++counted;
         }
         surface_.regions = counted;
-        region_count_density(result, region, strip, base_area, fp_area);
         surface_.region_density_min = counted ? lo : 0.0;
         surface_.region_density_max = counted ? hi : 0.0;
         surface_.region_density_mid_min = counted ? mid_lo : 0.0;
         surface_.region_density_mid_max = counted ? mid_hi : 0.0;
-        if (thinnest >= 0) {
-            const Vec3 centre = middle[static_cast<std::size_t>(thinnest)] / base_area[static_cast<std::size_t>(thinnest)];
+        // A point of the base near region r's middle: the centroid of its face closest to the
+        // region's area-weighted centre.
+        auto point_of = [&](int r) {
+            const Vec3 centre = middle[static_cast<std::size_t>(r)] / base_area[static_cast<std::size_t>(r)];
             double best = std::numeric_limits<double>::infinity();
+            Vec3 at = Vec3::Zero();
             for (std::size_t f = 0; f < F; ++f)
-                if (region[f] == thinnest && !strip[f] && (base_.centroid[f] - centre).squaredNorm() < best) {
+                if (region[f] == r && !strip[f] && (base_.centroid[f] - centre).squaredNorm() < best) {
                     best = (base_.centroid[f] - centre).squaredNorm();
-                    surface_.region_density_min_at = base_.centroid[f];
+                    at = base_.centroid[f];
                 }
-        }
+            return at;
+        };
+        if (thinnest >= 0) surface_.region_density_min_at = point_of(thinnest);
+        const auto [sparsest, densest] = region_count_density(result, region, strip, base_area, mid_area, fp_area);
+        if (sparsest >= 0) surface_.region_count_density_min_at = point_of(sparsest);
+        if (densest >= 0) surface_.region_count_density_max_at = point_of(densest);
     }
 
     /// region_density by count (SurfaceQualityReport::region_count_density_min): per region of
     /// `region` (faces in `strip` left out, regions under `min_area` of base area skipped), the
     /// swatch area of the elements standing over it at the run's scale, over its base area, over
-    /// the swatch's density. Not measured (left 0) where an element is a thread or a cut piece.
-    void region_count_density(const SurfaceQuiltResult& result, const std::vector<int>& region, const std::vector<char>& strip,
-                              const std::vector<double>& base_area, double min_area) {
+    /// the swatch's density; the same over its area on the shell's middle surface (`mid_area`).
+    /// Not measured (left 0) where an element is a thread or a cut piece. Returns the sparsest and
+    /// the densest region per base area (-1 when not measured).
+    std::pair<int, int> region_count_density(const SurfaceQuiltResult& result, const std::vector<int>& region, const std::vector<char>& strip,
+                             const std::vector<double>& base_area, const std::vector<double>& mid_area, double min_area) {
         const std::size_t n = result.source_element.size();
-        if (n == 0) return;
+        if (n == 0) return {-1, -1};
         for (std::size_t e = 0; e < n; ++e)
             if ((e < result_cut_.size() && result_cut_[e]) || quilt::is_elongated(sw_.elements[static_cast<std::size_t>(result.source_element[e])]))
-                return;
+                return {-1, -1};
         // The swatch's density as the count sees it: its elements' area (unstretched by --height,
         // as the count weighs them) per area in the density window, each face where it lies. (Its
         // elements counted whole by their centres would quantise: the bundled mail has 20 of its
         // 36 rings centred in the window, and their parts there weigh 24.2 rings.)
         const double mx = kDensityInset * sw_.box.size().x(), my = kDensityInset * sw_.box.size().y();
         const double count_density = quilt::window_density(sw_.mesh, mx, my, sw_.box.size().x() - mx, sw_.box.size().y() - my);
-        if (!(count_density > 0.0)) return;
+        if (!(count_density > 0.0)) return {-1, -1};
         // Each element's centre on the base: its faces' feet (their corners at height 0),
         // area-weighted, then the closest point of the base.
         std::vector<Vec3> vertex_foot(result.anchors.size());
@@ -3952,17 +3996,25 @@ private:
             counted[static_cast<std::size_t>(region[static_cast<std::size_t>(f)])] +=
                 mesh_area(sw_.elements[static_cast<std::size_t>(result.source_element[e])]) * scale_ * scale_ * local * local;
         }
-        double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+        double lo = std::numeric_limits<double>::infinity(), hi = 0.0, mid_lo = lo, mid_hi = 0.0;
+        int sparsest = -1, densest = -1;
         for (std::size_t r = 0; r < base_area.size(); ++r) {
             if (base_area[r] < min_area) continue;
             const double ratio = counted[r] / base_area[r] / count_density;
+            if (ratio < lo) sparsest = static_cast<int>(r);
+            if (ratio > hi) densest = static_cast<int>(r);
             lo = std::min(lo, ratio);
             hi = std::max(hi, ratio);
+            const double mid_ratio = counted[r] / std::max(mid_area[r], 1e-300) / count_density;
+            mid_lo = std::min(mid_lo, mid_ratio);
+            mid_hi = std::max(mid_hi, mid_ratio);
         }
-        if (hi > 0.0) {
-            surface_.region_count_density_min = lo;
-            surface_.region_count_density_max = hi;
-        }
+        if (!(hi > 0.0)) return {-1, -1};
+        surface_.region_count_density_min = lo;
+        surface_.region_count_density_max = hi;
+        surface_.region_count_density_mid_min = mid_lo;
+        surface_.region_count_density_mid_max = mid_hi;
+        return {sparsest, densest};
     }
 
     /// Each element's size as a share of its swatch element's at the run's scale and the field's
@@ -4059,6 +4111,7 @@ private:
     Base base_;
     std::vector<Vec3> direction_;
     std::vector<double> local_scale_;
+    std::vector<double> widening_;  ///< per base face: its area on the shell's middle surface over its base area
     std::vector<char> processed_;
     std::vector<int> score_;
     std::vector<int> face_slot_;
