@@ -3954,7 +3954,7 @@ private:
     /// Not measured (left 0) where an element is a thread or a cut piece. Returns the sparsest and
     /// the densest region per base area (-1 when not measured).
     std::pair<int, int> region_count_density(const SurfaceQuiltResult& result, const std::vector<int>& region, const std::vector<char>& strip,
-                             const std::vector<double>& base_area, const std::vector<double>& mid_area, double min_area) {
+                                             const std::vector<double>& base_area, const std::vector<double>& mid_area, double min_area) {
         const std::size_t n = result.source_element.size();
         if (n == 0) return {-1, -1};
         for (std::size_t e = 0; e < n; ++e)
