@@ -93,6 +93,7 @@ struct SurfaceQualityReport {
     int base_faces = 0;            ///< faces of the base as used (after refinement)
     int base_faces_processed = 0;  ///< faces the synthesis reached (all, on success)
     int patches_shrunk = 0;        ///< patches made smaller because LSCM distorted area by more than 2 (98th over 2nd percentile)
+    int patches_rigid = 0;         ///< patches of a swatch of free elements flattened again, as rigid as possible, from LSCM's map
     int frozen_elements_seen = 0;  ///< old elements reaching beyond a patch, treated as obstacles
     int threads_extended = 0;      ///< old threads reaching beyond a patch, handed to the kernel with their far part carried along
     int threads_trimmed = 0;       ///< new threads that collided, cut where they did; their free parts went in

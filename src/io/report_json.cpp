@@ -99,6 +99,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"base_faces_processed", s.base_faces_processed},
                         {"coverage", s.base_faces ? static_cast<double>(s.base_faces_processed) / s.base_faces : 0.0},
                         {"patches_shrunk", s.patches_shrunk},
+                        {"patches_rigid", s.patches_rigid},
                         {"frozen_elements_seen", s.frozen_elements_seen},
                         {"threads_extended", s.threads_extended},
                         {"threads_trimmed", s.threads_trimmed},

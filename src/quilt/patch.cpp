@@ -10,12 +10,15 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Eigen_solver_traits.h>
+#include <CGAL/Surface_mesh_parameterization/ARAP_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <queue>
 #include <unordered_map>
 #include <unordered_set>
@@ -268,7 +271,53 @@ Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* pa
     return out;
 }
 
-bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch) {
+namespace {
+
+/// CGAL's default solver for ARAP (sparse LU) that factors a matrix once: ARAP's global step solves
+/// the same cotangent matrix for u and for v in every iteration, and CGAL's Eigen_solver_traits
+/// factors it anew for each solve (2 x iterations LU factorisations of one matrix per patch).
+class CachedLUTraits : public CGAL::Eigen_solver_traits<Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType>> {
+    using Base = CGAL::Eigen_solver_traits<Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType>>;
+
+public:
+    using Base::linear_solver;
+    bool linear_solver(const Matrix& A, const Vector& B, Vector& X, NT& D) {
+        D = 1;
+        const auto& m = A.eigen_object();
+        // Same matrix as the factored one: same shape, pattern and values (compared, not assumed:
+        // the traits object outlives one parameterisation only by accident of CGAL's code).
+        const bool same = cached_->rows == m.rows() && cached_->cols == m.cols() && cached_->values.size() == static_cast<std::size_t>(m.nonZeros()) &&
+                          std::equal(cached_->values.begin(), cached_->values.end(), m.valuePtr()) &&
+                          std::equal(cached_->inner.begin(), cached_->inner.end(), m.innerIndexPtr()) &&
+                          std::equal(cached_->outer.begin(), cached_->outer.end(), m.outerIndexPtr());
+        if (!same) {
+            if (!m.isCompressed()) return Base::linear_solver(A, B, X, D);
+            solver().compute(m);
+            if (solver().info() != Eigen::Success) {
+                *cached_ = Cache();
+                return false;
+            }
+            cached_->rows = m.rows();
+            cached_->cols = m.cols();
+            cached_->values.assign(m.valuePtr(), m.valuePtr() + m.nonZeros());
+            cached_->inner.assign(m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
+            cached_->outer.assign(m.outerIndexPtr(), m.outerIndexPtr() + m.outerSize() + 1);
+        }
+        X = solver().solve(B);
+        return solver().info() == Eigen::Success;
+    }
+
+private:
+    struct Cache {
+        Eigen::Index rows = -1, cols = -1;
+        std::vector<double> values;
+        std::vector<int> inner, outer;
+    };
+    std::shared_ptr<Cache> cached_ = std::make_shared<Cache>();  // CGAL copies the traits by value
+};
+
+/// LSCM (arap_iterations 0) or ARAP started from it; see flatten_lscm.
+bool flatten(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch, int arap_iterations) {
     FlatPatch p;
     p.faces = faces;
     std::unordered_map<int, int> local;
@@ -300,7 +349,14 @@ bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* pa
         const auto border = PMP::longest_border(sm).first;
         if (border == SM::null_halfedge()) return false;
         auto uvmap = sm.add_property_map<SM::Vertex_index, K::Point_2>("v:uv").first;
-        const SMP::Error_code err = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SM>(), border, uvmap);
+        SMP::Error_code err;
+        if (arap_iterations > 0) {
+            // lambda 1000 (CGAL's default): close to pure ARAP; its start is LSCM's map.
+            using ARAP = SMP::ARAP_parameterizer_3<SM, SMP::Two_vertices_parameterizer_3<SM>, CachedLUTraits>;
+            err = SMP::parameterize(sm, ARAP(ARAP::Border_parameterizer(), CachedLUTraits(), 1000.0, static_cast<unsigned>(arap_iterations)), border, uvmap);
+        } else {
+            err = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SM>(), border, uvmap);
+        }
         if (err != SMP::OK) return false;
         for (SM::Vertex_index v : sm.vertices()) p.uv[v.idx()] = Vec2(uvmap[v].x(), uvmap[v].y());
     }
@@ -320,6 +376,14 @@ bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* pa
         if (!q.allFinite()) return false;
     *patch = std::move(p);
     return true;
+}
+
+}  // namespace
+
+bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch) { return flatten(mesh, faces, patch, 0); }
+
+bool flatten_arap(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch, int iterations) {
+    return flatten(mesh, faces, patch, std::max(1, iterations));
 }
 
 double area_distortion(const Mesh& mesh, const FlatPatch& p) {

@@ -65,7 +65,7 @@ inline constexpr double kSharpEdgeDegrees = 45.0;
 /// number of input faces in the remeshed regions (0: the surface is exactly the input's).
 Mesh refine_long_edges(const Mesh& mesh, double max_length, std::vector<int>* parent, int* thin_remeshed = nullptr);
 
-/// A disc of the base flattened by LSCM.
+/// A disc of the base flattened (LSCM or ARAP).
 struct FlatPatch {
     std::vector<int> faces;     ///< base faces
     std::vector<int> vertices;  ///< base vertices, in local order
@@ -76,6 +76,11 @@ struct FlatPatch {
 /// Flattens `faces` (a disc) with LSCM, scaled so that the flat area equals the 3D area, and
 /// orientation kept (counter-clockwise faces stay counter-clockwise). False when CGAL fails.
 bool flatten_lscm(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch);
+
+/// As flatten_lscm, but as rigid as possible (CGAL's ARAP, Liu et al. 2008, `iterations` of its
+/// local/global steps from the LSCM map, lambda 1000): area is kept as well as angles allow, where
+/// LSCM keeps angles and lets area drift over a curved disc.
+bool flatten_arap(const Mesh& mesh, const std::vector<int>& faces, FlatPatch* patch, int iterations);
 
 /// Ratio of the 98th to the 2nd percentile (by area) of flat-to-3D area ratios over the patch.
 double area_distortion(const Mesh& mesh, const FlatPatch& patch);
