@@ -567,6 +567,33 @@ TEST(Surface, OpenBaseIsCoveredAndElementsStayOnIt) {
     }
 }
 
+// Where two patches meet, each keeps its elements only the swatch's smallest gap from the other's,
+// so seams pack free elements closer than the swatch spaces them, and where seams cross, the count
+// rose above the bar: pebbles on the eight read 1.107 / 1.143 / 1.167 in the densest region at
+// seeds 1-3. After the last patch, spots denser than the swatch give up their most crowded
+// elements (thin_dense_spots, docs/surface.md step 11): 1.107 / 1.119 / 1.064. Every seed, not
+// one: the densest region is the tail of the seeds' spread, and one seed can pass it by luck.
+TEST(Surface, PebblesAreWithinTheBarAtEverySeed) {
+    const Mesh base = mq::read_mesh(surface_data_path("eight.obj"));
+    const Mesh swatch = mq::read_mesh(swatch_path("pebbles"));
+    int thinned = 0;
+    for (std::uint64_t seed : {1, 2, 3}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        const SurfaceRun run = quilt(base, swatch, 0.2, seed);
+        expect_whole_and_disjoint(run);
+        const auto [lo, hi] = region_count_density(run);
+        const auto& s = run.r.surface;
+        std::printf("eight + pebbles, seed %d: %d elements, %d thinned; counted %.3f - %.3f (the report's %.3f - %.3f)\n", static_cast<int>(seed),
+                    run.r.report.elements, s.elements_thinned, lo, hi, s.region_count_density_min, s.region_count_density_max);
+        EXPECT_GE(lo, 0.85);
+        EXPECT_LE(hi, 1.15);
+        EXPECT_GE(s.region_count_density_min, 0.85);
+        EXPECT_LE(s.region_count_density_max, 1.15);
+        thinned += s.elements_thinned;
+    }
+    EXPECT_GT(thinned, 0);
+}
+
 TEST(Surface, SeveralComponentsAreAllCovered) {
     const Mesh base = shapes::concat(isect::icosphere(1.0, 3), shapes::translated(isect::icosphere(0.6, 3), Vec3(3, 0, 0)));
     const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("rivets")), 0.2);

@@ -108,6 +108,7 @@ struct SurfaceQualityReport {
     int gaps_closed = 0;           ///< paving stones grown radially into holes where several meet, after the last patch (included in joints_closed)
     int elements_folded = 0;       ///< placements left out because normal displacement folded the element
     int elements_nudged = 0;       ///< new elements that collided where placed and fit after a small move (at most a mean edge length)
+    int elements_thinned = 0;      ///< free elements removed after the last patch from spots denser than the swatch (seams packed at its smallest gap; docs/surface.md, step 11)
     int elements_mended = 0;       ///< rings (or a layered swatch's scales) put into empty lattice slots after the last patch
     int ring_holes_filled = 0;     ///< of them, rings put into holes between lattices (off every lattice's slots)
     int ring_holes_tilted = 0;     ///< of those, rings tilted from their swatch ring's pose to fit

@@ -115,6 +115,7 @@ std::string report_json(const QualityReport& report, const SurfaceQualityReport&
                         {"elements_folded", s.elements_folded},
                         {"elements_enlarged", s.elements_enlarged},
                         {"elements_nudged", s.elements_nudged},
+                        {"elements_thinned", s.elements_thinned},
                         {"elements_mended", s.elements_mended},
                         {"ring_holes_filled", s.ring_holes_filled},
                         {"ring_holes_tilted", s.ring_holes_tilted},
