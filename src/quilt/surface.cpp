@@ -3650,8 +3650,8 @@ private:
     /// smallest gap from the other's (keeps_clearance), so a seam packs free elements at that gap
     /// where the swatch has them at its typical spacing, and seams crossing one another leave spots
     /// denser than the swatch (pebbles on the eight: 4-7% of the elements stood closer to one of
-    /// another patch than any two in the swatch, and the densest regions by count read 1.11-1.17 at
-    /// seeds 1-3). After the last patch, every free element's window (a ball holding kThinWindow
+    /// another patch than 0.8 of the swatch's closest pair, and the densest regions by count read
+    /// 1.11-1.17 at seeds 1-3). After the last patch, every free element's window (a ball holding kThinWindow
     /// footprints of base area at its local scale) is measured as the report counts: its elements'
     /// swatch area over the window's base area, over the swatch's density. While a window holds more
     /// than kThinCap, its most crowded element (nearest element centre over the swatch's typical
