@@ -13,7 +13,8 @@ namespace meshquilt::quilt {
 
 /// Faces around `seed` within `radius` (shortest paths between face centroids), grown breadth
 /// first in order of distance; a face joins only if the region stays a topological disc (it shares
-/// one edge and brings one new vertex, or shares two edges), so LSCM can flatten it.
+/// one edge and brings one new vertex, or shares two edges), so LSCM can flatten it. A face refused
+/// is tried again whenever another of its neighbours joins, so no slit is left next to the seed.
 std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3>>& neighbours,
                            const std::vector<Vec3>& centroids, int seed, double radius);
 

@@ -5,6 +5,7 @@
 #include "meshquilt/quilt.h"
 #include "quilt/swatch.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -119,6 +120,60 @@ Mesh open_cylinder(double radius, double height, int segments, int rings) {
     auto id = [&](int r, int s) { return r * segments + (s % segments); };
     for (int r = 0; r < rings; ++r)
         for (int s = 0; s < segments; ++s) add_quad(m, id(r, s), id(r, s + 1), id(r + 1, s + 1), id(r + 1, s));
+    return m;
+}
+
+Mesh capsule(double radius, double length, int segments, int cap_rings, int rings) {
+    if (segments < 3 || cap_rings < 2 || rings < 1) throw std::invalid_argument("capsule needs segments >= 3, cap_rings >= 2, rings >= 1");
+    Mesh m;
+    // Rings of latitude from the south pole up: cap_rings - 1 on the lower hemisphere, rings + 1
+    // along the tube (its two ends are the hemispheres' equators), cap_rings - 1 on the upper one.
+    std::vector<std::pair<double, double>> lat;  // (ring radius, z)
+    for (int i = 1; i < cap_rings; ++i) {
+        const double t = -0.5 * kPi + 0.5 * kPi * i / cap_rings;
+        lat.emplace_back(radius * std::cos(t), radius * std::sin(t));
+    }
+    for (int i = 0; i <= rings; ++i) lat.emplace_back(radius, length * i / rings);
+    for (int i = cap_rings - 1; i >= 1; --i) {
+        const double t = -0.5 * kPi + 0.5 * kPi * i / cap_rings;
+        lat.emplace_back(radius * std::cos(t), length - radius * std::sin(t));
+    }
+    m.vertices.emplace_back(0.0, 0.0, -radius);
+    for (const auto& [r, z] : lat)
+        for (int s = 0; s < segments; ++s) {
+            const double a = 2 * kPi * s / segments;
+            m.vertices.emplace_back(r * std::cos(a), r * std::sin(a), z);
+        }
+    const int top = static_cast<int>(m.vertices.size());
+    m.vertices.emplace_back(0.0, 0.0, length + radius);
+    auto id = [&](int r, int s) { return 1 + r * segments + (s % segments); };
+    const int n = static_cast<int>(lat.size());
+    for (int s = 0; s < segments; ++s) {
+        m.faces.emplace_back(0, id(0, s + 1), id(0, s));
+        m.faces.emplace_back(top, id(n - 1, s), id(n - 1, s + 1));
+    }
+    for (int r = 0; r + 1 < n; ++r)
+        for (int s = 0; s < segments; ++s) add_quad(m, id(r, s), id(r, s + 1), id(r + 1, s + 1), id(r + 1, s));
+    return m;
+}
+
+Mesh subdivided(const Mesh& mesh) {
+    Mesh m;
+    m.vertices = mesh.vertices;
+    std::map<std::pair<int, int>, int> mid;
+    auto at = [&](int a, int b) {
+        const auto key = std::minmax(a, b);
+        auto [it, fresh] = mid.try_emplace({key.first, key.second}, static_cast<int>(m.vertices.size()));
+        if (fresh) m.vertices.push_back(0.5 * (mesh.vertices[static_cast<std::size_t>(a)] + mesh.vertices[static_cast<std::size_t>(b)]));
+        return it->second;
+    };
+    for (const Tri& t : mesh.faces) {
+        const int ab = at(t[0], t[1]), bc = at(t[1], t[2]), ca = at(t[2], t[0]);
+        m.faces.emplace_back(t[0], ab, ca);
+        m.faces.emplace_back(ab, t[1], bc);
+        m.faces.emplace_back(ca, bc, t[2]);
+        m.faces.emplace_back(ab, bc, ca);
+    }
     return m;
 }
 

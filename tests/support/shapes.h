@@ -23,6 +23,15 @@ Mesh torus(double major = 2.0, double minor = 0.5, int nu = 24, int nv = 12);
 /// `segments` around (>= 3), `rings` along (>= 1). Two boundary loops, genus 0.
 Mesh open_cylinder(double radius = 1.0, double height = 2.0, int segments = 16, int rings = 4);
 
+/// A closed capsule around the z axis, as modelling tools build one (a UV sphere stretched at its
+/// equator): a tube of `radius` from z = 0 to `length` between two hemispheres, `segments` around
+/// (>= 3), `cap_rings` rings of latitude per hemisphere (>= 2) ending in a fan of thin triangles at
+/// each pole, `rings` along the tube (>= 1). Genus 0, normals outward.
+Mesh capsule(double radius, double length, int segments, int cap_rings, int rings);
+
+/// Each face split into four at its edges' midpoints (shared midpoints shared); the shape is kept.
+Mesh subdivided(const Mesh& mesh);
+
 /// A flat square [0, size]^2 in the plane z = 0, `n` x `n` quads split into triangles, normals +z.
 /// One boundary loop, genus 0.
 Mesh grid(int n = 4, double size = 1.0);
