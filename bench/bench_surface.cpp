@@ -8,6 +8,11 @@
 // base holds target / swatch-faces footprints. Reports wall time per stage, output faces and
 // peak memory (max RSS) as counters.
 //
+// Beside them, a part thinner than the footprint (ThinCapsule): trimesh's capsule of radius 0.06
+// and length 1 (48 x 48, subdivided once, built by tests/support/shapes) with pebbles at swatch
+// size 0.2, where slit patch discs once took 4,220 patches and 16 minutes (docs/surface.md, "Thin
+// parts were slow"). Built when the tests are (it uses their shapes).
+//
 //   build/bench/bench_surface --benchmark_counters_tabular=true
 
 #include "meshquilt/io.h"
@@ -19,6 +24,9 @@
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include "bench_util.h"
+#ifdef MQ_TEST_SHAPES
+#include "support/shapes.h"
+#endif
 
 #include <benchmark/benchmark.h>
 
@@ -72,6 +80,20 @@ const mq::Mesh& base_mesh(std::string* name) {
     return base;
 }
 
+void counters(benchmark::State& state, const mq::Mesh& base, const mq::SurfaceQuiltResult& r) {
+    state.counters["base_faces"] = static_cast<double>(base.faces.size());
+    state.counters["out_faces"] = r.report.faces;
+    state.counters["elements"] = r.report.elements;
+    state.counters["removed"] = r.report.elements_removed;
+    state.counters["patches"] = r.report.patches;
+    state.counters["dens_min"] = r.surface.region_density_min;
+    state.counters["dens_max"] = r.surface.region_density_max;
+    state.counters["count_min"] = r.surface.region_count_density_min;  // 0 for threads (not counted)
+    state.counters["count_max"] = r.surface.region_count_density_max;
+    state.counters["peak_MB"] = peak_rss_mb();
+    for (const auto& [stage, s] : r.report.seconds) state.counters["s_" + stage] = s;
+}
+
 void run_row(benchmark::State& state, const char* swatch_name, double target_faces) {
     std::string base_name;
     const mq::Mesh& base = base_mesh(&base_name);
@@ -95,24 +117,34 @@ void run_row(benchmark::State& state, const char* swatch_name, double target_fac
         benchmark::DoNotOptimize(r.mesh.faces.data());
     }
     state.SetLabel(base_name);
-    state.counters["base_faces"] = static_cast<double>(base.faces.size());
-    state.counters["out_faces"] = r.report.faces;
-    state.counters["elements"] = r.report.elements;
-    state.counters["removed"] = r.report.elements_removed;
-    state.counters["patches"] = r.report.patches;
-    state.counters["dens_min"] = r.surface.region_density_min;
-    state.counters["dens_max"] = r.surface.region_density_max;
-    state.counters["count_min"] = r.surface.region_count_density_min;  // 0 for threads (not counted)
-    state.counters["count_max"] = r.surface.region_count_density_max;
-    state.counters["peak_MB"] = peak_rss_mb();
-    for (const auto& [stage, s] : r.report.seconds) state.counters["s_" + stage] = s;
+    counters(state, base, r);
 }
 
 void BM_BunnyWeave(benchmark::State& state) { run_row(state, "weave", 700000); }
 void BM_BunnyLink(benchmark::State& state) { run_row(state, "chainmail", 940000); }
 
+#ifdef MQ_TEST_SHAPES
+void BM_ThinCapsule(benchmark::State& state) {
+    const mq::Mesh base = meshquilt::test::shapes::subdivided(meshquilt::test::shapes::capsule(0.06, 1.0, 48, 24, 1));
+    const mq::Mesh swatch = mq::read_mesh(std::string(MQ_SWATCH_DIR) + "/pebbles.obj");
+    mq::SurfaceQuiltResult r;
+    for (auto _ : state) {
+        mq::SurfaceQuiltOptions o;
+        o.swatch_size = 0.2;
+        o.seed = 1;
+        r = mq::quilt_surface(base, swatch, o);
+        benchmark::DoNotOptimize(r.mesh.faces.data());
+    }
+    state.SetLabel("capsule r 0.06, pebbles");
+    counters(state, base, r);
+}
+#endif
+
 }  // namespace
 
 BENCHMARK(BM_BunnyWeave)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_BunnyLink)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+#ifdef MQ_TEST_SHAPES
+BENCHMARK(BM_ThinCapsule)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+#endif
 BENCHMARK_MAIN();
