@@ -582,10 +582,18 @@ TEST(Surface, OpenBaseIsCoveredAndElementsStayOnIt) {
     const Mesh base = shapes::open_cylinder(1.0, 3.0, 48, 24);
     const SurfaceRun run = quilt(base, mq::read_mesh(swatch_path("pebbles")), 0.2);
     expect_whole_and_disjoint(run);
-    // The report's lowest region is within the bar on an open base too (measured 0.992; the Bases
-    // tests compare the report's measure with their own on open bases).
-    std::printf("open cylinder + pebbles: report's region density %.3f - %.3f\n", run.r.surface.region_density_min, run.r.surface.region_density_max);
+    // The report's regions are within the bar on an open base too (measured 0.992 lowest; the Bases
+    // tests compare the report's measure with their own on open bases). Dense spots are thinned
+    // with the strip along the rim left out of their windows, as the report leaves it out
+    // (session 56): seed 1, by count 0.949-1.069 and 5 thinned before, 0.939-1.062 and 16 after;
+    // by area 1.022-1.084 before, 1.015-1.045 after. (This base passed the bar before too; the
+    // camelhead's neck, docs/surface.md step 11, is where it did not.)
+    std::printf("open cylinder + pebbles: report's region density %.3f - %.3f, by count %.3f - %.3f, thinned %d\n", run.r.surface.region_density_min, run.r.surface.region_density_max, run.r.surface.region_count_density_min, run.r.surface.region_count_density_max, run.r.surface.elements_thinned);
     EXPECT_GE(run.r.surface.region_density_min, 0.85);
+    EXPECT_LE(run.r.surface.region_density_max, 1.15);
+    EXPECT_GE(run.r.surface.region_count_density_min, 0.85);
+    EXPECT_LE(run.r.surface.region_count_density_max, 1.15);
+    EXPECT_GT(run.r.surface.elements_thinned, 0);
     // Elements sit outside the cylinder (along the outward normals) and within its height.
     for (const Vec3& v : run.r.mesh.vertices) {
         EXPECT_GE(std::hypot(v.x(), v.y()), 0.97);
@@ -598,7 +606,8 @@ TEST(Surface, OpenBaseIsCoveredAndElementsStayOnIt) {
 // so seams pack free elements closer than the swatch spaces them, and where seams cross, the count
 // rose above the bar: pebbles on the eight read 1.107 / 1.143 / 1.167 in the densest region at
 // seeds 1-3. After the last patch, spots denser than the swatch give up their most crowded
-// elements (thin_dense_spots, docs/surface.md step 11): 1.107 / 1.119 / 1.064. Every seed, not
+// elements (thin_dense_spots, docs/surface.md step 11): 1.107 / 1.119 / 1.064 (with session 56's
+// discs, grow_disc: 1.087 / 1.085 / 1.040). Every seed, not
 // one: the densest region is the tail of the seeds' spread, and one seed can pass it by luck.
 TEST(Surface, PebblesAreWithinTheBarAtEverySeed) {
     const Mesh base = mq::read_mesh(surface_data_path("eight.obj"));
