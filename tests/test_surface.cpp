@@ -965,7 +965,7 @@ TEST_P(SurfaceThickMail, IsQuiltedThinnedAndThickenedBack) {
         // region, so a region whose mail has no hole holds about that many times the swatch's
         // rings per base area. Crowding is read there (an upper bar per base area would pass only
         // a mail with holes); coverage per base area, as the acceptance reads it. Measured at
-        // seed 1: 1,096 rings, test regions 0.990-1.192 per base area, 0.806-0.964 on the middle
+        // seed 1: 1,096 rings, test regions 0.990-1.192 per base area, 0.810-0.963 on the middle
         // surface (the densest region the one with fewest holes: 91 of its 139 rings have six
         // neighbours within 1.5 spacings, as in the swatch; in the sparsest 52 of 115), 615
         // linked with 4. Seeds 2 and 3: 0.994-1.079 and 0.942-1.116 per base area. Before session
