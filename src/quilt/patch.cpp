@@ -46,7 +46,7 @@ SM to_surface_mesh(const Mesh& m) {
 }  // namespace
 
 std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3>>& nb, const std::vector<Vec3>& centroids, int seed,
-                           double radius) {
+                           double radius, bool close_slits) {
     std::vector<int> region;
     // Sparse per-call state: faces and vertices touched, in maps keyed by index.
     std::unordered_map<int, double> dist;
@@ -88,7 +88,7 @@ std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3
             // good, and the fronts passing on both sides of them left a slit into the disc, a cut
             // next to its seed: on a thin capsule's caps, patches marked 1-20 faces each (step 9)
             // and the run took 16 minutes instead of 21 s (docs/surface.md, step 4).
-            if (it == dist.end() || nd <= it->second || tries[g] > 0) {
+            if (it == dist.end() || nd <= it->second || (close_slits && tries[g] > 0)) {
                 dist[g] = std::min(nd, it == dist.end() ? nd : it->second);
                 queue.emplace(dist[g], g);
             }

@@ -15,8 +15,11 @@ namespace meshquilt::quilt {
 /// first in order of distance; a face joins only if the region stays a topological disc (it shares
 /// one edge and brings one new vertex, or shares two edges), so LSCM can flatten it. A face refused
 /// is tried again whenever another of its neighbours joins, so no slit is left next to the seed.
+/// With `close_slits` false, a refused face is tried again only when reached on a path as short as
+/// before (the growth before session 56, which leaves slits; thread swatches keep it, see
+/// docs/surface.md step 4, "Thin parts were slow").
 std::vector<int> grow_disc(const Mesh& mesh, const std::vector<std::array<int, 3>>& neighbours,
-                           const std::vector<Vec3>& centroids, int seed, double radius);
+                           const std::vector<Vec3>& centroids, int seed, double radius, bool close_slits = true);
 
 /// Faces whose smallest angle is below this are thin (slivers and needles: CAD fans, CSG output)...
 inline constexpr double kMinCellAngleDegrees = 10.0;

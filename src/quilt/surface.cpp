@@ -766,7 +766,10 @@ private:
         quilt::FlatPatch flat;
         bool ok = false;
         for (int attempt = 0; attempt < 8; ++attempt) {
-            const std::vector<int> faces = quilt::grow_disc(base_.mesh, base_.nb, base_.centroid, seed, radius);
+            // Thread swatches grow their discs as before session 56, with slits (docs/surface.md
+            // step 4, "Thin parts were slow": whole discs cost the armadillo's weave 0.856 -> 0.644
+            // in its lowest region at seed 1, 889 -> 351 patches; with slits again 0.869, 915).
+            const std::vector<int> faces = quilt::grow_disc(base_.mesh, base_.nb, base_.centroid, seed, radius, !has_threads_);
             ok = quilt::flatten_lscm(base_.mesh, faces, &flat);
             if (ok && (faces.size() <= 1 || radius <= min_radius || quilt::area_distortion(base_.mesh, flat) <= kMaxDistortion)) break;
             if (!ok && radius <= min_radius) break;
@@ -1068,7 +1071,8 @@ private:
     /// Lattice swatches keep LSCM: a ring's or thread's neighbours are bound to its angles, and on
     /// the eight at scale 0.2, ARAP frames gave chain mail 5% fewer rings (session 52).
     void prepare_rigid_frames() {
-        rigid_frames_ = !rings_ && thread_sets_[0].ids.empty() && thread_sets_[1].ids.empty();
+        has_threads_ = !thread_sets_[0].ids.empty() || !thread_sets_[1].ids.empty();
+        rigid_frames_ = !rings_ && !has_threads_;
         for (std::size_t s = 0; s < sw_.elements.size() && rigid_frames_; ++s)
             if (quilt::is_strand_source(sw_, static_cast<int>(s))) rigid_frames_ = false;
     }
@@ -4300,6 +4304,7 @@ private:
     bool interlocked_ = false;  ///< ... and they interlock (chain mail): no ring may be left unlinked
     bool woven_ = false;        ///< the swatch has threads in both directions (a weave)
     bool rigid_frames_ = false;  ///< patches flattened as rigid as possible (see prepare_rigid_frames)
+    bool has_threads_ = false;   ///< the swatch has threads (either direction): discs grow as before session 56 (make_frame)
     Mesh lattice_probe_;        ///< the swatch's middle, for fit_lattice_scale (chain mail, weaves)
     std::vector<int> ring_kind_;      ///< per swatch element: the first ring it is a translate of (-1: no ring)
     std::vector<int> ring_need_;      ///< per swatch element: links a ring of it keeps in the output (prepare_ring_need)
