@@ -738,10 +738,10 @@ TEST(Patches, ADiscTakesEveryFaceNearItsSeed) {
     }
 }
 
-TEST(Patches, ThreadSwatchesKeepTheGrowthWithSlits) {
-    // grow_disc(..., close_slits = false) is the growth before session 56, kept for thread swatches
-    // (whole discs cost the armadillo's weave 0.856 -> 0.644 in its lowest region: docs/surface.md
-    // step 4). On the capsule's caps it leaves faces out that the growth closing slits takes (78
+TEST(Patches, WithoutClosingSlitsADiscTakesLessAndNeverMore) {
+    // grow_disc(..., close_slits = false) is the growth before session 56, which make_frame keeps
+    // for thread swatches (whole discs cost the armadillo's weave 0.856 -> 0.644 in its lowest
+    // region: docs/surface.md step 4; that choice itself is not held by a test). On the capsule's caps it leaves faces out that the growth closing slits takes (78
     // of the 341 discs here are smaller), and it never takes more.
     const Mesh mesh = shapes::capsule(1.0, 2.0, 48, 16, 8);
     const auto nb = mq::quilt::face_neighbours(mesh);
