@@ -46,6 +46,11 @@ struct ShellOptions {
     int max_passes = 60;              ///< optimisation passes over all free offset vertices at most
     double min_relative_gain = 1e-4;  ///< stop once a pass lowers the objective by less than this
     std::uint64_t seed = 1;           ///< random line-search directions
+    /// Atlas charts grow as discs that close slits (a refused face is tried again whenever another
+    /// of its neighbours joins); false tries it again only when reached on a path as short as
+    /// before, which leaves slits (quilt::grow_disc; the surface stage sets false for swatches
+    /// with threads, as for its patch discs).
+    bool close_chart_slits = true;
     Reporter reporter;                ///< progress ("shell map") and cancellation
 };
 

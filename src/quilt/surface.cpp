@@ -648,6 +648,8 @@ private:
         so.height = surface_.shell_height;
         so.optimise = opt_.optimise_shell;
         so.seed = opt_.seed;
+        // Thread swatches: charts with slits, as their patch discs (make_frame).
+        so.close_chart_slits = !has_threads_;
         shell_ = std::make_shared<const ShellMap>(base_.mesh, so);
         surface_.shell = shell_->statistics();
         stage_seconds_["shell map"] += seconds_since(t0);
@@ -4304,7 +4306,7 @@ private:
     bool interlocked_ = false;  ///< ... and they interlock (chain mail): no ring may be left unlinked
     bool woven_ = false;        ///< the swatch has threads in both directions (a weave)
     bool rigid_frames_ = false;  ///< patches flattened as rigid as possible (see prepare_rigid_frames)
-    bool has_threads_ = false;   ///< the swatch has threads (either direction): discs grow as before session 56 (make_frame)
+    bool has_threads_ = false;   ///< the swatch has threads (either direction): patch discs (make_frame) and shell charts (build_shell) grow with slits
     Mesh lattice_probe_;        ///< the swatch's middle, for fit_lattice_scale (chain mail, weaves)
     std::vector<int> ring_kind_;      ///< per swatch element: the first ring it is a translate of (-1: no ring)
     std::vector<int> ring_need_;      ///< per swatch element: links a ring of it keeps in the output (prepare_ring_need)

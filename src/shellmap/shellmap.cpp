@@ -542,7 +542,7 @@ void ShellMap::Impl::build_atlas() {
         double radius = std::min(0.15 * diag, 1.5 * last);
         quilt::FlatPatch flat;
         for (;;) {
-            const std::vector<int> faces = quilt::grow_disc(base, open, centroid, static_cast<int>(seed), radius);
+            const std::vector<int> faces = quilt::grow_disc(base, open, centroid, static_cast<int>(seed), radius, opt.close_chart_slits);
             bool ok = quilt::flatten_lscm(base, faces, &flat);
             if (ok && faces.size() > 1) {
                 for (const Tri& lt : flat.local) {
