@@ -176,12 +176,13 @@ TEST(ShellMap, BijectiveAndStretchNeverWorse) {
 
 // Charts grown with slits (ShellOptions::close_chart_slits false, what the surface stage asks for
 // swatches with threads) give a shell as valid as the default charts: every tetrahedron positive in
-// both spaces and the stretch never worse after optimisation. On the cells the surface stage makes
-// of spot the two growths give different atlases (else the option would not reach the charts); on
+// both spaces and the stretch never worse after optimisation. On spot split into cells as the
+// surface stage splits it the two growths give different atlases (else the option would not reach the charts); on
 // the coarser bases here they give the same.
 TEST(ShellMap, ChartsWithSlitsAreAsValid) {
     std::vector<Case> all = cases();
-    // The cells the surface stage makes of spot at about a weave's scale: there the growths differ.
+    // Spot split to edges of 1% of its diagonal, as the surface stage splits a base into cells (to
+    // 1/6 of the footprint: 1.3% at the default scale 0.08): there the growths differ (at 2% not).
     const Mesh spot = mq::read_mesh(surface_data_path("spot.obj"));
     std::vector<int> parent;
     int thin = -1;
