@@ -1,31 +1,202 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #include "core/triangle_index.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <mutex>
 #include <limits>
+#include <utility>
 
 namespace meshquilt {
 
 namespace {
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = K::Point_3;
-using Triangle = K::Triangle_3;
-using Iterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
-using Traits = CGAL::AABB_traits<K, Primitive>;
-using Tree = CGAL::AABB_tree<Traits>;
 
-Point to_cgal(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+/// A bounding volume hierarchy over a mesh's faces for closest-point and nearness queries: a
+/// binary tree of axis-aligned boxes, split at the median face centroid along the box's longest
+/// side, up to kLeafFaces faces per leaf, stored depth first (a node's first child follows it).
+/// A query visits the nearer child first and skips every box farther than the best face so far.
+///
+/// Beyond the library: it replaced CGAL's AABB_tree (with accelerate_distance_queries) here in
+/// session 59. Both answer the same question, but these queries run by the million inside the
+/// kernel's cuts (cut_element, anchored_faces), and CGAL's general traversal (a kd-tree hint,
+/// then Epick's projection per primitive) took most of their time (docs/benchmarks.md).
+class FaceBvh {
+public:
+    void build(const Mesh& mesh) {
+        const std::size_t F = mesh.faces.size();
+        corners_.resize(F);
+        order_.resize(F);
+        std::vector<Vec3> centre(F);
+        for (std::size_t f = 0; f < F; ++f) {
+            for (int k = 0; k < 3; ++k) corners_[f][static_cast<std::size_t>(k)] = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][k])];
+            centre[f] = (corners_[f][0] + corners_[f][1] + corners_[f][2]) / 3.0;
+            order_[f] = static_cast<int>(f);
+        }
+        nodes_.clear();
+        nodes_.reserve(F > 0 ? 2 * (F / kLeafFaces + 1) : 0);
+        if (F > 0) split(0, static_cast<int>(F), centre);
+        // The leaves' corners in leaf order, so a leaf reads one contiguous run.
+        std::vector<std::array<Vec3, 3>> sorted(F);
+        for (std::size_t i = 0; i < F; ++i) sorted[i] = corners_[static_cast<std::size_t>(order_[i])];
+        corners_ = std::move(sorted);
+    }
+
+    [[nodiscard]] bool empty() const { return nodes_.empty(); }
+
+    /// The face nearest to p (by squared distance; the lowest index among equals, so the answer
+    /// does not depend on the tree) and that squared distance; -1 and infinity when empty.
+    [[nodiscard]] std::pair<int, double> nearest(const Vec3& p) const {
+        double best = std::numeric_limits<double>::infinity();
+        int best_face = -1;
+        if (nodes_.empty()) return {best_face, best};
+        std::array<std::pair<int, double>, 64> stack;
+        int top = 0;
+        stack[static_cast<std::size_t>(top++)] = {0, box_distance2(nodes_[0], p)};
+        while (top > 0) {
+            const auto [n, d2] = stack[static_cast<std::size_t>(--top)];
+            if (d2 > best) continue;
+            const Node& node = nodes_[static_cast<std::size_t>(n)];
+            if (node.count > 0) {
+                for (int i = node.first; i < node.first + node.count; ++i) {
+                    const auto& c = corners_[static_cast<std::size_t>(i)];
+                    const double e2 = (closest_point_on_triangle(p, c[0], c[1], c[2], nullptr) - p).squaredNorm();
+                    const int f = order_[static_cast<std::size_t>(i)];
+                    if (e2 < best || (e2 == best && f < best_face)) {
+                        best = e2;
+                        best_face = f;
+                    }
+                }
+                continue;
+            }
+            const int l = n + 1, r = node.right;
+            const double dl = box_distance2(nodes_[static_cast<std::size_t>(l)], p), dr = box_distance2(nodes_[static_cast<std::size_t>(r)], p);
+            // The nearer child is popped first.
+            if (dl <= dr) {
+                stack[static_cast<std::size_t>(top++)] = {r, dr};
+                stack[static_cast<std::size_t>(top++)] = {l, dl};
+            } else {
+                stack[static_cast<std::size_t>(top++)] = {l, dl};
+                stack[static_cast<std::size_t>(top++)] = {r, dr};
+            }
+        }
+        return {best_face, best};
+    }
+
+    /// Whether some face's closest point to p lies within distance r of it (as
+    /// (closest point - p).norm() <= r, the distance TriangleIndex::closest reports).
+    [[nodiscard]] bool within(const Vec3& p, double r) const {
+        if (nodes_.empty() || !(r >= 0.0)) return false;
+        const double limit = r * r * (1.0 + 1e-9) + std::numeric_limits<double>::min();  // boxes: a little slack for rounding
+        std::array<int, 64> stack;
+        int top = 0;
+        stack[static_cast<std::size_t>(top++)] = 0;
+        while (top > 0) {
+            const Node& node = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
+            if (box_distance2(node, p) > limit) continue;
+            if (node.count > 0) {
+                for (int i = node.first; i < node.first + node.count; ++i) {
+                    const auto& c = corners_[static_cast<std::size_t>(i)];
+                    if ((closest_point_on_triangle(p, c[0], c[1], c[2], nullptr) - p).norm() <= r) return true;
+                }
+                continue;
+            }
+            const int n = static_cast<int>(&node - nodes_.data());
+            stack[static_cast<std::size_t>(top++)] = node.right;
+            stack[static_cast<std::size_t>(top++)] = n + 1;
+        }
+        return false;
+    }
+
+    /// Faces whose bounding boxes meet `box`, ascending.
+    [[nodiscard]] std::vector<int> in_box(const Box3& box) const {
+        std::vector<int> out;
+        if (nodes_.empty()) return out;
+        std::array<int, 64> stack;
+        int top = 0;
+        stack[static_cast<std::size_t>(top++)] = 0;
+        while (top > 0) {
+            const Node& node = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
+            if (!boxes_meet(node.lo, node.hi, box)) continue;
+            if (node.count > 0) {
+                for (int i = node.first; i < node.first + node.count; ++i) {
+                    const auto& c = corners_[static_cast<std::size_t>(i)];
+                    const Vec3 lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]), hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
+                    if (boxes_meet(lo, hi, box)) out.push_back(order_[static_cast<std::size_t>(i)]);
+                }
+                continue;
+            }
+            const int n = static_cast<int>(&node - nodes_.data());
+            stack[static_cast<std::size_t>(top++)] = node.right;
+            stack[static_cast<std::size_t>(top++)] = n + 1;
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+
+private:
+    static constexpr int kLeafFaces = 4;
+    struct Node {
+        Vec3 lo, hi;
+        int first = 0, count = 0;  ///< a leaf's faces: order_[first, first + count); count 0 for an inner node
+        int right = 0;             ///< an inner node's second child (its first is the next node)
+    };
+
+    static double box_distance2(const Node& n, const Vec3& p) {
+        const Vec3 d = (n.lo - p).cwiseMax(p - n.hi).cwiseMax(0.0);
+        return d.squaredNorm();
+    }
+    static bool boxes_meet(const Vec3& lo, const Vec3& hi, const Box3& b) {
+        return lo.x() <= b.max.x() && b.min.x() <= hi.x() && lo.y() <= b.max.y() && b.min.y() <= hi.y() && lo.z() <= b.max.z() &&
+               b.min.z() <= hi.z();
+    }
+
+    /// Builds the subtree over order_[begin, end) and returns its node's index. The depth stays
+    /// below about log2(F) + 1 (median splits), far within the queries' stacks of 64.
+    int split(int begin, int end, const std::vector<Vec3>& centre) {
+        const int n = static_cast<int>(nodes_.size());
+        nodes_.emplace_back();
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        Vec3 clo = lo, chi = hi;
+        for (int i = begin; i < end; ++i) {
+            const auto& c = corners_[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])];
+            for (const Vec3& v : c) {
+                lo = lo.cwiseMin(v);
+                hi = hi.cwiseMax(v);
+            }
+            clo = clo.cwiseMin(centre[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])]);
+            chi = chi.cwiseMax(centre[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])]);
+        }
+        nodes_[static_cast<std::size_t>(n)].lo = lo;
+        nodes_[static_cast<std::size_t>(n)].hi = hi;
+        if (end - begin <= kLeafFaces) {
+            nodes_[static_cast<std::size_t>(n)].first = begin;
+            nodes_[static_cast<std::size_t>(n)].count = end - begin;
+            return n;
+        }
+        int axis = 0;
+        const Vec3 ext = chi - clo;
+        if (ext.y() > ext[axis]) axis = 1;
+        if (ext.z() > ext[axis]) axis = 2;
+        const int mid = begin + (end - begin) / 2;
+        // Ties broken by face index: the tree, and so every answer, is the same on every run.
+        std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
+            const double ca = centre[static_cast<std::size_t>(a)][axis], cb = centre[static_cast<std::size_t>(b)][axis];
+            return ca < cb || (ca == cb && a < b);
+        });
+        split(begin, mid, centre);
+        nodes_[static_cast<std::size_t>(n)].right = split(mid, end, centre);
+        return n;
+    }
+
+    std::vector<Node> nodes_;
+    std::vector<int> order_;                    ///< faces in leaf order
+    std::vector<std::array<Vec3, 3>> corners_;  ///< the corners of order_'s faces
+};
+
 }  // namespace
 
 /// Sample points of the mesh (vertices and face centroids) for the kd-tree; each maps to the faces
@@ -43,9 +214,8 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 
 struct TriangleIndex::Impl {
     Mesh mesh;
-    std::vector<Triangle> triangles;
     std::vector<Vec3> normals;
-    Tree tree;
+    FaceBvh bvh;
     SampleCloud cloud;
     std::unique_ptr<KdTree> kd;  ///< built on the first best_match (most indices only answer closest())
     std::once_flag kd_once;
@@ -60,15 +230,8 @@ TriangleIndex& TriangleIndex::operator=(TriangleIndex&&) noexcept = default;
 
 TriangleIndex::TriangleIndex(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     impl_->mesh = mesh;
-    impl_->triangles.reserve(mesh.faces.size());
-    for (const Tri& f : mesh.faces)
-        impl_->triangles.emplace_back(to_cgal(mesh.vertices[f[0]]), to_cgal(mesh.vertices[f[1]]), to_cgal(mesh.vertices[f[2]]));
     impl_->normals = face_normals(mesh);
-    if (!impl_->triangles.empty()) {
-        impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
-        impl_->tree.build();
-        impl_->tree.accelerate_distance_queries();
-    }
+    impl_->bvh.build(mesh);
 }
 
 void TriangleIndex::Impl::build_kd() {
@@ -98,15 +261,14 @@ void TriangleIndex::Impl::build_kd() {
     }
 }
 
-bool TriangleIndex::empty() const { return !impl_ || impl_->triangles.empty(); }
+bool TriangleIndex::empty() const { return !impl_ || impl_->bvh.empty(); }
 const Mesh& TriangleIndex::mesh() const { return impl_->mesh; }
 const Vec3& TriangleIndex::face_normal(int f) const { return impl_->normals[static_cast<std::size_t>(f)]; }
 
 ClosestHit TriangleIndex::closest(const Vec3& p) const {
     if (empty()) return {-1, std::numeric_limits<double>::infinity(), p, Vec3::Zero()};
-    const auto pp = impl_->tree.closest_point_and_primitive(to_cgal(p));
     ClosestHit hit;
-    hit.face = static_cast<int>(pp.second - impl_->triangles.cbegin());
+    hit.face = impl_->bvh.nearest(p).first;
     const Tri& f = impl_->mesh.faces[static_cast<std::size_t>(hit.face)];
     const auto& V = impl_->mesh.vertices;
     hit.point = closest_point_on_triangle(p, V[f[0]], V[f[1]], V[f[2]], &hit.bary);
@@ -159,16 +321,11 @@ ClosestHit TriangleIndex::best_match(const Vec3& p, const Vec3& n, const MatchMe
     return best;
 }
 
+bool TriangleIndex::within(const Vec3& p, double r) const { return !empty() && impl_->bvh.within(p, r); }
+
 std::vector<int> TriangleIndex::faces_in_box(const Box3& box) const {
-    std::vector<int> out;
-    if (empty()) return out;
-    const CGAL::Bbox_3 q(box.min.x(), box.min.y(), box.min.z(), box.max.x(), box.max.y(), box.max.z());
-    std::vector<Primitive::Id> ids;
-    impl_->tree.all_intersected_primitives(q, std::back_inserter(ids));
-    out.reserve(ids.size());
-    for (const auto& id : ids) out.push_back(static_cast<int>(id - impl_->triangles.cbegin()));
-    std::sort(out.begin(), out.end());
-    return out;
+    if (empty()) return {};
+    return impl_->bvh.in_box(box);
 }
 
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* bary) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: AGPL-3.0-or-later
 #pragma once
-// Closest-point queries over a triangle mesh (CGAL AABB tree behind a CGAL-free interface).
+// Closest-point queries over a triangle mesh (a bounding volume hierarchy of its faces).
 
 #include "meshquilt/mesh.h"
 
@@ -41,6 +41,9 @@ public:
 
     /// Closest point on the mesh (by Euclidean distance); face -1 at infinite distance when empty().
     [[nodiscard]] ClosestHit closest(const Vec3& p) const;
+    /// Whether closest(p).distance <= r, answered without finding the closest face (the search
+    /// stops at the first face that near). False when empty().
+    [[nodiscard]] bool within(const Vec3& p, double r) const;
     /// Eq. 2: the face minimising D(p, f) for a point with unit normal n, and that minimum D (capped,
     /// see MatchMetric::cutoff) in `score`. The minimum runs over the faces around the 6 nearest
     /// sample points (vertices and face centroids, in a kd-tree), which holds the closest face for

@@ -193,7 +193,7 @@ std::vector<char> anchored_faces(const Mesh& m, const TriangleIndex& partner, do
         const Vec3 c = centroid(m, static_cast<int>(f));
         Box3 at;
         at.extend(c);
-        out[f] = (side && !in_overlap(*side, c)) || !partner_box.overlaps(at, reach) || partner.closest(c).distance > reach;
+        out[f] = (side && !in_overlap(*side, c)) || !partner_box.overlaps(at, reach) || !partner.within(c, reach);
     }
     return out;
 }
