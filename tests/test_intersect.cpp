@@ -494,6 +494,60 @@ TEST(ElementCollider, TinyCellsAndOversizedElementsGiveTheSameAnswers) {
     expect_agrees_with_brute_force(coarse, 9);
 }
 
+TEST(ElementCollider, QueriesFromAnIdOnCompleteEarlierAnswers) {
+    // What a candidate met before some elements went in (first_id 0), those of them still stored,
+    // and what it meets from next_id() of that time on, are what it meets now.
+    std::mt19937 rng(11);
+    const auto placed = random_spheres(rng, 80, 0.2, 0.7);
+    const auto queries = random_spheres(rng, 40, 0.2, 0.9);
+    ElementCollider collider;
+    EXPECT_EQ(collider.next_id(), 0);
+    for (std::size_t k = 0; k < 40; ++k) ASSERT_EQ(collider.add(placed[k].mesh), static_cast<int>(k));
+    const int since = collider.next_id();
+    ASSERT_EQ(since, 40);
+    std::vector<std::vector<int>> before;
+    std::vector<std::vector<char>> before_faces;
+    for (const Sphere& q : queries) {
+        before.push_back(collider.colliding(q.mesh));
+        before_faces.push_back(collider.colliding_faces(q.mesh));
+        EXPECT_TRUE(collider.colliding(q.mesh, {}, since).empty());  // nothing from there on yet
+        EXPECT_FALSE(collider.collides(q.mesh, {}, since));
+    }
+    for (std::size_t k = 40; k < placed.size(); ++k) ASSERT_EQ(collider.add(placed[k].mesh), static_cast<int>(k));
+    for (int k = 0; k < 80; k += 3) collider.remove(k);  // old and new ones go
+    for (int k = 0; k < 80; ++k) EXPECT_EQ(collider.contains(k), k % 3 != 0) << k;
+    EXPECT_FALSE(collider.contains(-1));
+    EXPECT_FALSE(collider.contains(80));
+    std::size_t joined = 0, kept_faces = 0;
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+        const Mesh& m = queries[q].mesh;
+        std::vector<int> expect;
+        for (int id : before[q])
+            if (collider.contains(id)) expect.push_back(id);
+        const std::vector<int> later = collider.colliding(m, {}, since);
+        for (int id : later) EXPECT_GE(id, since);
+        joined += later.size();
+        expect.insert(expect.end(), later.begin(), later.end());
+        EXPECT_EQ(collider.colliding(m), expect) << "query " << q;
+        EXPECT_EQ(collider.collides(m, {}, since), !later.empty()) << "query " << q;
+        if (!later.empty()) {  // ignoring still works from an id on
+            EXPECT_EQ(collider.colliding(m, {later.front()}, since), std::vector<int>(later.begin() + 1, later.end()));
+        }
+        // Faces: where none of the earlier hits went, the earlier faces and the later ones make up
+        // the whole answer.
+        if (std::all_of(before[q].begin(), before[q].end(), [&](int id) { return collider.contains(id); })) {
+            std::vector<char> faces = collider.colliding_faces(m, {}, static_cast<std::size_t>(-1), since);
+            for (std::size_t f = 0; f < faces.size(); ++f) faces[f] = static_cast<char>(faces[f] | before_faces[q][f]);
+            EXPECT_EQ(faces, collider.colliding_faces(m)) << "query " << q;
+            ++kept_faces;
+        }
+        EXPECT_TRUE(collider.colliding(m, {}, collider.next_id()).empty());
+        EXPECT_EQ(collider.colliding(m, {}, -5), collider.colliding(m));
+    }
+    EXPECT_GT(joined, 5U);       // later elements were met
+    EXPECT_GT(kept_faces, 10U);  // and the face answers were compared
+}
+
 TEST(ElementCollider, HugeElementAndTouching) {
     ElementCollider collider;
     const int small = collider.add(sh::cuboid(V(0, 0, 0), V(1, 1, 1)));  // fixes the cell size at 1

@@ -848,8 +848,9 @@ struct ElementCollider::Impl {
                 for (std::int64_t z = lo[2]; z <= hi[2]; ++z) fn(CellKey{x, y, z});
     }
 
-    /// Ids of stored elements whose boxes overlap `b` and that are not ignored, ascending.
-    std::vector<int> near(const Box& b, const std::vector<int>& ignore_sorted) const {
+    /// Ids of stored elements whose boxes overlap `b`, that are not ignored and are at least
+    /// `first_id`, ascending.
+    std::vector<int> near(const Box& b, const std::vector<int>& ignore_sorted, int first_id) const {
         std::vector<int> out;
         std::array<std::int64_t, 3> lo{}, hi{};
         if (cell > 0.0 && cell_range(b, lo, hi)) {
@@ -866,7 +867,7 @@ struct ElementCollider::Impl {
         }
         out.erase(std::remove_if(out.begin(), out.end(),
                                  [&](int id) {
-                                     return std::binary_search(ignore_sorted.begin(), ignore_sorted.end(), id) ||
+                                     return id < first_id || std::binary_search(ignore_sorted.begin(), ignore_sorted.end(), id) ||
                                             !overlap(entries[static_cast<std::size_t>(id)]->geometry.box, b);
                                  }),
                   out.end());
@@ -879,10 +880,10 @@ struct ElementCollider::Impl {
         Prepared c;
         std::vector<int> faces, ids;
     };
-    Query prepare_query(const Mesh& candidate, const std::vector<int>& ignore) const {
+    Query prepare_query(const Mesh& candidate, const std::vector<int>& ignore, int first_id) const {
         Query q;
         check_mesh(candidate, "ElementCollider candidate");
-        if (candidate.faces.empty() || alive == 0) return q;
+        if (candidate.faces.empty() || alive == 0 || static_cast<std::size_t>(std::max(first_id, 0)) >= entries.size()) return q;
         std::vector<Box> face_boxes(candidate.faces.size());
         Box all;
         for (std::size_t f = 0; f < candidate.faces.size(); ++f) {
@@ -898,7 +899,7 @@ struct ElementCollider::Impl {
         }
         std::vector<int> ign(ignore);
         std::sort(ign.begin(), ign.end());
-        q.ids = near(all, ign);
+        q.ids = near(all, ign, first_id);
         if (q.ids.empty()) return q;
 
         // Only faces that reach into some nearby element's box can touch it.
@@ -926,8 +927,8 @@ struct ElementCollider::Impl {
     }
 
     template <class Fn>  // fn(id) -> bool stop
-    void for_each_colliding(const Mesh& candidate, const std::vector<int>& ignore, Fn&& fn) const {
-        const Query q = prepare_query(candidate, ignore);
+    void for_each_colliding(const Mesh& candidate, const std::vector<int>& ignore, int first_id, Fn&& fn) const {
+        const Query q = prepare_query(candidate, ignore, first_id);
         for (int id : q.ids)
             if (prepared_intersect(q.c, entries[static_cast<std::size_t>(id)]->geometry) && fn(id)) return;
     }
@@ -986,24 +987,24 @@ void ElementCollider::remove(int id) {
     --s.alive;
 }
 
-std::vector<int> ElementCollider::colliding(const Mesh& candidate, const std::vector<int>& ignore) const {
+std::vector<int> ElementCollider::colliding(const Mesh& candidate, const std::vector<int>& ignore, int first_id) const {
     std::vector<int> out;
-    impl_->for_each_colliding(candidate, ignore, [&](int id) {
+    impl_->for_each_colliding(candidate, ignore, first_id, [&](int id) {
         out.push_back(id);
         return false;
     });
     return out;  // ascending: near() returns ids in order
 }
 
-bool ElementCollider::collides(const Mesh& candidate, const std::vector<int>& ignore) const {
+bool ElementCollider::collides(const Mesh& candidate, const std::vector<int>& ignore, int first_id) const {
     bool any = false;
-    impl_->for_each_colliding(candidate, ignore, [&](int) { return any = true; });
+    impl_->for_each_colliding(candidate, ignore, first_id, [&](int) { return any = true; });
     return any;
 }
 
-std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const std::vector<int>& ignore, std::size_t max_hits) const {
+std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const std::vector<int>& ignore, std::size_t max_hits, int first_id) const {
     std::vector<char> hit(candidate.faces.size(), 0);
-    const Impl::Query q = impl_->prepare_query(candidate, ignore);
+    const Impl::Query q = impl_->prepare_query(candidate, ignore, first_id);
     std::vector<NodePair> stack;
     std::size_t hits = 0;
     for (int id : q.ids) {
@@ -1023,6 +1024,12 @@ std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const 
 }
 
 std::size_t ElementCollider::size() const { return impl_->alive; }
+
+int ElementCollider::next_id() const { return static_cast<int>(impl_->entries.size()); }
+
+bool ElementCollider::contains(int id) const {
+    return id >= 0 && static_cast<std::size_t>(id) < impl_->entries.size() && impl_->entries[static_cast<std::size_t>(id)] != nullptr;
+}
 
 Box3 ElementCollider::box(int id) const {
     const Impl& s = *impl_;

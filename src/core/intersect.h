@@ -115,23 +115,35 @@ public:
     void remove(int id);
 
     /// Ids (ascending) of stored elements that `candidate` intersects or touches, except those in
-    /// `ignore`.
+    /// `ignore` and those with ids below `first_id`.
+    ///
+    /// Every test is exact, so whether `candidate` meets an element does not depend on the others
+    /// stored: ids found at some point (`first_id` 0), still stored later (`contains`), and the
+    /// ids found then from the `next_id` of that point on are what a query then would find. A
+    /// caller may so run the costly part of its queries in parallel ahead of a serial loop.
     /// \throw InvalidInput bad indices or non-finite coordinates in `candidate`
-    [[nodiscard]] std::vector<int> colliding(const Mesh& candidate, const std::vector<int>& ignore = {}) const;
+    [[nodiscard]] std::vector<int> colliding(const Mesh& candidate, const std::vector<int>& ignore = {}, int first_id = 0) const;
 
     /// Like `colliding`, but stops at the first hit: true if `candidate` collides with any element
-    /// not in `ignore`.
-    [[nodiscard]] bool collides(const Mesh& candidate, const std::vector<int>& ignore = {}) const;
+    /// not in `ignore` with an id of at least `first_id`.
+    [[nodiscard]] bool collides(const Mesh& candidate, const std::vector<int>& ignore = {}, int first_id = 0) const;
 
-    /// Per face of `candidate`: 1 when it intersects or touches a stored element not in `ignore`.
-    /// Every pair is tested serially, so it costs more than `collides`; once more than `max_hits`
-    /// faces are found the search stops (the rest of the faces may then be hit and still read 0).
+    /// Per face of `candidate`: 1 when it intersects or touches a stored element not in `ignore`
+    /// with an id of at least `first_id`. Every pair is tested serially, so it costs more than
+    /// `collides`; once more than `max_hits` faces are found the search stops (the rest of the
+    /// faces may then be hit and still read 0).
     /// \throw InvalidInput bad indices or non-finite coordinates in `candidate`
     [[nodiscard]] std::vector<char> colliding_faces(const Mesh& candidate, const std::vector<int>& ignore = {},
-                                                    std::size_t max_hits = static_cast<std::size_t>(-1)) const;
+                                                    std::size_t max_hits = static_cast<std::size_t>(-1), int first_id = 0) const;
 
     /// Number of stored (added and not removed) elements.
     [[nodiscard]] std::size_t size() const;
+
+    /// The id the next `add` returns.
+    [[nodiscard]] int next_id() const;
+
+    /// Is element `id` stored (added and not removed)?
+    [[nodiscard]] bool contains(int id) const;
 
     /// Bounding box of stored element `id`; an empty box for an unknown id.
     [[nodiscard]] Box3 box(int id) const;

@@ -1157,9 +1157,18 @@ private:
         std::vector<quilt::OldElement> old;
         std::vector<Mesh> obstacles;  // mappable triangles of partial elements
         reach_.clear();
-        for (int id : near) {
-            const SurfElement& e = elems_[static_cast<std::size_t>(id)];
-            Mesh m;
+        // Each old element is mapped on its own (map_to_frame and extend_thread are const), in
+        // parallel, then taken in order.
+        struct Seen {
+            enum class As { whole, extended, obstacle } as = As::obstacle;
+            Mesh mesh;
+            Reach reach;
+        };
+        std::vector<Seen> seen(near.size());
+        tbb::parallel_for(std::size_t{0}, near.size(), [&](std::size_t i) {
+            const SurfElement& e = elems_[static_cast<std::size_t>(near[i])];
+            Seen& s = seen[i];
+            Mesh& m = s.mesh;
             m.vertices.assign(e.anchors.size(), Vec3::Zero());
             std::vector<char> ok(e.anchors.size(), 0);
             bool whole = true;
@@ -1169,18 +1178,30 @@ private:
             }
             if (whole) {
                 m.faces = e.faces;
-                old.push_back({id, std::move(m)});
-            } else if (Reach reach; extend_thread(e, ok, flat, hs, &m, &reach)) {
+                s.as = Seen::As::whole;
+            } else if (extend_thread(e, ok, flat, hs, &m, &s.reach)) {
+                s.as = Seen::As::extended;
+            } else {
+                m = mapped_part(m.vertices, e.faces, ok);
+            }
+        });
+        for (std::size_t i = 0; i < near.size(); ++i) {
+            Seen& s = seen[i];
+            switch (s.as) {
+            case Seen::As::whole: old.push_back({near[i], std::move(s.mesh)}); break;
+            case Seen::As::extended:
                 // Beyond the paper: a thread reaching beyond the patch still takes part, with its far
                 // vertices carried into the frame along its own edges (see extend_thread). The kernel
                 // leaves a thread's part off the contested ground exactly where it was, so those
                 // vertices go back to their own anchors (apply).
                 ++surface_.threads_extended;
-                reach_[id] = std::move(reach);
-                old.push_back({id, std::move(m)});
-            } else {
+                reach_[near[i]] = std::move(s.reach);
+                old.push_back({near[i], std::move(s.mesh)});
+                break;
+            case Seen::As::obstacle:
                 ++surface_.frozen_elements_seen;
-                obstacles.push_back(mapped_part(m.vertices, e.faces, ok));
+                obstacles.push_back(std::move(s.mesh));
+                break;
             }
         }
         // Occupancy raster in the patch frame (cells of the swatch grid).
@@ -1211,20 +1232,27 @@ private:
 
         // The placed swatch: elements that land wholly on the flattened patch.
         const double fx0 = ti * cell_, fy0 = tj * cell_, fx1 = (ti + sx_) * cell_, fy1 = (tj + sy_) * cell_;
-        std::vector<quilt::NewElement> fresh;
-        for (quilt::NewElement& ne : pl.fresh) {
-            if (!quilt::is_elongated(ne.mesh)) {
-                if (std::all_of(ne.mesh.vertices.begin(), ne.mesh.vertices.end(), [&](const Vec3& v) { return locator.locate(v.head<2>(), 0.0).inside; }))
-                    fresh.push_back(std::move(ne));
-                continue;
+        // Each element on its own, in parallel, then taken in order.
+        std::vector<std::vector<Mesh>> kept(pl.fresh.size());
+        std::vector<char> kept_cut(pl.fresh.size(), 0);
+        tbb::parallel_for(std::size_t{0}, pl.fresh.size(), [&](std::size_t i) {
+            Mesh& m = pl.fresh[i].mesh;
+            if (!quilt::is_elongated(m)) {
+                if (std::all_of(m.vertices.begin(), m.vertices.end(), [&](const Vec3& v) { return locator.locate(v.head<2>(), 0.0).inside; }))
+                    kept[i].push_back(std::move(m));
+                return;
             }
             // Beyond the paper: a thread reaching off the patch keeps its parts on it (quilt/trim.h).
             bool cut = false;
-            for (Mesh& piece : on_patch(ne.mesh, locator, &cut)) {
-                if (cut) ++surface_.threads_cut_at_patch;
-                fresh.push_back({ne.source, std::move(piece)});
+            kept[i] = on_patch(m, locator, &cut);
+            kept_cut[i] = static_cast<char>(cut);
+        });
+        std::vector<quilt::NewElement> fresh;
+        for (std::size_t i = 0; i < pl.fresh.size(); ++i)
+            for (Mesh& piece : kept[i]) {
+                if (kept_cut[i]) ++surface_.threads_cut_at_patch;
+                fresh.push_back({pl.fresh[i].source, std::move(piece)});
             }
-        }
         quilt::Overlap overlap;
         overlap.old_side = [fx0, fy0, fx1, fy1](double x, double y) { return x >= fx0 && x < fx1 && y >= fy0 && y < fy1; };
         overlap.new_side = [&occ](double x, double y) { return occ.occupied(x, y); };
@@ -3222,6 +3250,12 @@ private:
             std::vector<char> folded;  ///< a thread's faces that the embedding folds or tears (stretched_faces; none: it does neither)
             std::vector<int> dent_hit;  ///< the collider ids it met when dent_clear was last tried (tried again only once one of them is gone)
             const Mesh* dented = nullptr;  ///< the thread's frame mesh dented clear (dent_clear), when it was
+            // What `embedded` and `fallback` met in the collider before the loop below (known_hits),
+            // with the ignored id of the change's old element; for a new element, its faces that met
+            // them. Set aside once `embedded` changes.
+            bool hits_known = false, fallback_hits_known = false, faces_known = false;
+            std::vector<int> hits, fallback_hits;
+            std::vector<char> hit_faces;
         };
         // A new element goes onto the surface at its swatch element's size: where the patch's map
         // scales area (LSCM is conformal, not area preserving; normal displacement fans out over
@@ -3326,6 +3360,35 @@ private:
         for (const Mesh& m : obstacles) around.push_back(&m);
         std::deque<Mesh> dented;  // frame meshes of threads dented clear (dent_clear), for nudging
         std::set<int> removed;    // collider ids of the old elements removed so far (a thread's dent is tried again only when one it met is gone)
+        auto ignored = [&](const Candidate& c) {
+            std::vector<int> ignore;
+            if (c.change->old_id >= 0) ignore.push_back(elems_[static_cast<std::size_t>(c.change->old_id)].collider_id);
+            return ignore;
+        };
+        // The collision tests below run in order, each seeing what the ones before put in. What a
+        // candidate meets of the elements there before any went in is asked first, of all in
+        // parallel; in the loop, only whether those are still there, and what went in since
+        // (ElementCollider::colliding says why the answers are the same).
+        const int since = collider_.next_id();
+        tbb::parallel_for(std::size_t{0}, pending.size(), [&](std::size_t i) {
+            Candidate& c = pending[i];
+            const std::vector<int> ignore = ignored(c);
+            c.hits = collider_.colliding(c.embedded, ignore);
+            c.hits_known = true;
+            if (!c.fallback.faces.empty() && !c.hits.empty()) {
+                c.fallback_hits = collider_.colliding(c.fallback, ignore);
+                c.fallback_hits_known = true;
+            }
+            // A new thread that meets something is cut clear of it (trim_thread, below).
+            if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh)) {
+                c.hit_faces = c.hits.empty() ? std::vector<char>(c.embedded.faces.size(), 0) : collider_.colliding_faces(c.embedded);
+                c.faces_known = true;
+            }
+        });
+        auto still = [&](const std::vector<int>& hits) { return std::any_of(hits.begin(), hits.end(), [&](int id) { return collider_.contains(id); }); };
+        auto collides_now = [&](const Mesh& m, bool known, const std::vector<int>& hits, const std::vector<int>& ignore) {
+            return known ? still(hits) || collider_.collides(m, ignore, since) : collider_.collides(m, ignore);
+        };
         for (int pass = 0; pass < 4 && !pending.empty(); ++pass) {
             std::vector<Candidate> refused;
             const std::size_t before = pending.size();
@@ -3339,8 +3402,7 @@ private:
                     refused.push_back(std::move(c));
                     continue;
                 }
-                std::vector<int> ignore;
-                if (ch->old_id >= 0) ignore.push_back(elems_[static_cast<std::size_t>(ch->old_id)].collider_id);
+                const std::vector<int> ignore = ignored(c);
                 Kind kind = ch->kind;
                 const std::vector<Tri>* faces = &ch->mesh.faces;
                 std::vector<SurfacePoint>* anchors = &c.anchors;
@@ -3349,8 +3411,16 @@ private:
                 const bool dent_again =
                     c.dent_hit.empty() || std::any_of(c.dent_hit.begin(), c.dent_hit.end(), [&](int id) { return removed.count(id) > 0; });
                 if (dent_again && c.folded.empty() && quilt::is_elongated(ch->mesh) && !off_size(c.embedded, of, local) &&
-                    collider_.collides(c.embedded, ignore)) {
-                    c.dent_hit = collider_.colliding(c.embedded, ignore);
+                    collides_now(c.embedded, c.hits_known, c.hits, ignore)) {
+                    if (c.hits_known) {
+                        c.dent_hit.clear();
+                        for (int id : c.hits)
+                            if (collider_.contains(id)) c.dent_hit.push_back(id);
+                        const std::vector<int> more = collider_.colliding(c.embedded, ignore, since);
+                        c.dent_hit.insert(c.dent_hit.end(), more.begin(), more.end());
+                    } else {
+                        c.dent_hit = collider_.colliding(c.embedded, ignore);
+                    }
                     const auto r = reach_.find(ch->old_id);
                     const Reach* at = ch->old_id >= 0 && r != reach_.end() ? &r->second : nullptr;
                     Mesh frame;
@@ -3362,14 +3432,16 @@ private:
                         c.anchors = std::move(dent_anchors);
                         c.embedded = std::move(dent_embedded);
                         c.dented = &dented.back();
+                        c.hits_known = c.faces_known = false;
                         ++surface_.threads_dented;
                     }
                 }
-                if (collider_.collides(c.embedded, ignore) || off_size(c.embedded, of, local)) {
+                if (collides_now(c.embedded, c.hits_known, c.hits, ignore) || off_size(c.embedded, of, local)) {
                     // A thread's whole partner would replace the old thread, parts beyond the patch
                     // included: it is cut clear of the old one instead (below).
                     const bool thread_partner = kind == Kind::Stitched && quilt::is_elongated(ch->fallback);
-                    if (c.fallback.faces.empty() || thread_partner || collider_.collides(c.fallback, ignore) || off_size(c.fallback, of, local)) {
+                    if (c.fallback.faces.empty() || thread_partner || collides_now(c.fallback, c.fallback_hits_known, c.fallback_hits, ignore) ||
+                        off_size(c.fallback, of, local)) {
                         refused.push_back(std::move(c));
                         continue;
                     }
@@ -3408,9 +3480,18 @@ private:
         {
             std::vector<Candidate> kept;
             for (auto& c : pending) {
-                if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh) &&
-                    trim_thread(c.change->mesh, c.change->source, c.embedded, c.resize, place, &pieces_applied, c.folded))
-                    continue;
+                if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh)) {
+                    std::vector<char> bad;
+                    if (c.faces_known && !still(c.hits)) {
+                        bad = collider_.colliding_faces(c.embedded, {}, static_cast<std::size_t>(-1), since);
+                    } else if (c.faces_known && std::all_of(c.hits.begin(), c.hits.end(), [&](int id) { return collider_.contains(id); })) {
+                        bad = collider_.colliding_faces(c.embedded, {}, static_cast<std::size_t>(-1), since);
+                        for (std::size_t f = 0; f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | c.hit_faces[f]);
+                    } else {
+                        bad = collider_.colliding_faces(c.embedded);
+                    }
+                    if (trim_thread(c.change->mesh, c.change->source, std::move(bad), c.resize, place, &pieces_applied, c.folded)) continue;
+                }
                 // A strand (knot work), new or a merge's loser, goes in as its pieces cut across it
                 // clear of what it meets (trim_strand), as an under-crossing stops short.
                 if (c.change->kind == Kind::Added && quilt::is_strand_source(sw_, c.change->source)) {
@@ -3422,7 +3503,7 @@ private:
                 // A stitch of two threads that collides, and whose new partner whole collides too:
                 // the old thread stays, the partner's parts clear of it and of the rest go in.
                 if (c.change->kind == Kind::Stitched && !c.fallback.faces.empty() && quilt::is_elongated(c.change->fallback) &&
-                    trim_thread(c.change->fallback, c.change->source, c.fallback, c.fallback_resize, place, &pieces_applied))
+                    trim_thread(c.change->fallback, c.change->source, collider_.colliding_faces(c.fallback), c.fallback_resize, place, &pieces_applied))
                     continue;
                 kept.push_back(std::move(c));
             }
@@ -3490,14 +3571,13 @@ private:
         }
     }
 
-    /// Adds the pieces of new thread `mesh` (frame mesh of swatch element `source`, embedded as
-    /// `embedded`, resized by `resize` in the frame) that stay clear of the output (clear_pieces): cut
-    /// where its faces collide or are `folded`. Adds the pieces' frame meshes to `frames`; true when
-    /// any went in.
+    /// Adds the pieces of new thread `mesh` (frame mesh of swatch element `source`, resized by
+    /// `resize` in the frame) that stay clear of the output (clear_pieces): cut where its faces
+    /// collide (`bad`: per face of its embedding, 1 where it meets the output) or are `folded`. Adds
+    /// the pieces' frame meshes to `frames`; true when any went in.
     template <class Place>
-    bool trim_thread(const Mesh& mesh, int source, const Mesh& embedded, double resize, const Place& place, std::deque<Mesh>* frames,
+    bool trim_thread(const Mesh& mesh, int source, std::vector<char> bad, double resize, const Place& place, std::deque<Mesh>* frames,
                      const std::vector<char>& folded = {}) {
-        std::vector<char> bad = collider_.colliding_faces(embedded);
         for (std::size_t f = 0; f < folded.size() && f < bad.size(); ++f) bad[f] = static_cast<char>(bad[f] | folded[f]);
         if (std::none_of(bad.begin(), bad.end(), [](char b) { return b != 0; })) return false;
         std::vector<PieceFit> fits = clear_pieces(resized_in_frame(mesh, resize), source, bad, place);
