@@ -40,6 +40,8 @@ public:
     [[nodiscard]] const Vec3& face_normal(int f) const;  ///< unit normal (zero for degenerate faces)
 
     /// Closest point on the mesh (by Euclidean distance); face -1 at infinite distance when empty().
+    /// Faces at the same (computed) distance, such as those sharing the edge or vertex nearest to
+    /// p, go to the lowest face index, so the answer does not depend on the tree.
     [[nodiscard]] ClosestHit closest(const Vec3& p) const;
     /// Whether closest(p).distance <= r, answered without finding the closest face (the search
     /// stops at the first face that near). False when empty().

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 namespace meshquilt::quilt {
 
 namespace {
@@ -54,6 +56,27 @@ Coverage::Coverage(double x0, double y0, double x1, double y1, double pixel, boo
       projected_(projected) {}
 
 void Coverage::add(const Mesh& m) {
+    rasterise(m, [&](std::size_t k) { covered_[k] = 1; }, [&](std::size_t k, double a) { area_[k] += a; });
+}
+
+void Coverage::add(const std::vector<const Mesh*>& meshes) {
+    struct Marks {
+        std::vector<std::size_t> covered;
+        std::vector<std::pair<std::size_t, double>> area;  // in face order
+    };
+    std::vector<Marks> marks(meshes.size());
+    tbb::parallel_for(std::size_t{0}, meshes.size(), [&](std::size_t i) {
+        Marks& mk = marks[i];
+        rasterise(*meshes[i], [&](std::size_t k) { mk.covered.push_back(k); }, [&](std::size_t k, double a) { mk.area.emplace_back(k, a); });
+    });
+    for (const Marks& mk : marks) {
+        for (std::size_t k : mk.covered) covered_[k] = 1;
+        for (const auto& [k, a] : mk.area) area_[k] += a;
+    }
+}
+
+template <class Cover, class Area>
+void Coverage::rasterise(const Mesh& m, Cover&& cover, Area&& add_area) const {
     for (const Tri& f : m.faces) {
         const Vec3& p = m.vertices[f[0]];
         const Vec3& q = m.vertices[f[1]];
@@ -62,7 +85,7 @@ void Coverage::add(const Mesh& m) {
             const double cx = (p.x() + q.x() + r.x()) / 3.0, cy = (p.y() + q.y() + r.y()) / 3.0;
             const int i = column(cx), j = row(cy);
             const Vec3 n = (q - p).cross(r - p);
-            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) area_[static_cast<std::size_t>(j) * nx_ + i] += 0.5 * (projected_ ? std::abs(n.z()) : n.norm());
+            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) add_area(static_cast<std::size_t>(j) * nx_ + i, 0.5 * (projected_ ? std::abs(n.z()) : n.norm()));
         }
         const double area = (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
         const int i0 = std::max(0, static_cast<int>(std::floor((std::min({p.x(), q.x(), r.x()}) - x0_) / pixel_)));
@@ -78,14 +101,14 @@ void Coverage::add(const Mesh& m) {
                 const double w1 = (r.x() - c.x()) * (p.y() - c.y()) - (r.y() - c.y()) * (p.x() - c.x());
                 const double w2 = (p.x() - c.x()) * (q.y() - c.y()) - (p.y() - c.y()) * (q.x() - c.x());
                 if (area > 0 ? (w0 >= 0 && w1 >= 0 && w2 >= 0) : (w0 <= 0 && w1 <= 0 && w2 <= 0)) {
-                    covered_[static_cast<std::size_t>(j) * nx_ + i] = 1;
+                    cover(static_cast<std::size_t>(j) * nx_ + i);
                     any = true;
                 }
             }
         if (!any) {
             const double cx = (p.x() + q.x() + r.x()) / 3.0, cy = (p.y() + q.y() + r.y()) / 3.0;
             const int i = static_cast<int>(std::floor((cx - x0_) / pixel_)), j = static_cast<int>(std::floor((cy - y0_) / pixel_));
-            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) covered_[static_cast<std::size_t>(j) * nx_ + i] = 1;
+            if (i >= 0 && j >= 0 && i < nx_ && j < ny_) cover(static_cast<std::size_t>(j) * nx_ + i);
         }
     }
 }

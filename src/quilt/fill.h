@@ -38,6 +38,9 @@ public:
     /// a pixel marks the pixel of its centroid; vertical faces cover nothing), and adds each face's
     /// area to the pixel of its centroid.
     void add(const Mesh& m);
+    /// `add` of each of `meshes`, in order: the same raster (each mesh is rasterised on its own, in
+    /// parallel, and the face areas are summed in the same order).
+    void add(const std::vector<const Mesh*>& meshes);
 
     /// Marks every pixel that `mask` (a raster of the same rectangle and pixel) does not cover, so
     /// that distances end there (ground beyond a surface patch holds elements the frame cannot show).
@@ -67,6 +70,11 @@ public:
     [[nodiscard]] bool covered(int i, int j) const { return covered_[static_cast<std::size_t>(j) * nx_ + i] != 0; }
 
 private:
+    /// Calls cover(pixel) for each pixel a face of `m` covers and add_area(pixel, area) for each face
+    /// (see add), face by face.
+    template <class Cover, class Area>
+    void rasterise(const Mesh& m, Cover&& cover, Area&& add_area) const;
+
     double x0_, y0_, pixel_;
     int nx_, ny_;
     std::vector<char> covered_;

@@ -1730,10 +1730,12 @@ private:
             quilt::Coverage cov(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel), ground(fx0 - r, fy0 - r, fx1 + r, fy1 + r, pixel);
             ground.add(patch);
             std::vector<const Mesh*> crossing;  // the elements running the other way, and those laid that way
+            std::vector<const Mesh*> covering;
             for (std::size_t k = 0; k < near.size(); ++k) {
-                if (runs[k] != 1 - along) cov.add(near[k].mesh);
+                if (runs[k] != 1 - along) covering.push_back(&near[k].mesh);
                 else crossing.push_back(&near[k].mesh);
             }
+            cov.add(covering);
             for (const Mesh& m : laid[static_cast<std::size_t>(1 - along)]) crossing.push_back(&m);  // laid just now
             cov.cover_outside(ground);
             std::vector<char> tried(static_cast<std::size_t>(cov.nx()) * static_cast<std::size_t>(cov.ny()), 0);
@@ -1812,16 +1814,20 @@ private:
         const double s = ts.spacing;
         const double mid = 0.5 * (sw_.box.min.z() + sw_.box.max.z());
         double best = c[1 - along], best_score = -1.0;
+        // The vertices some line counts (within 5/8 spacing across, 1.5 along), in their order.
+        std::vector<Vec3> near;
+        for (const Mesh* m : crossing)
+            for (const Vec3& v : m->vertices)
+                if (std::fabs(v[1 - along] - c[1 - along]) < 0.625 * s && std::fabs(v[along] - c[along]) < 1.5 * s) near.push_back(v);
         for (int k = -4; k <= 4; ++k) {
             const double y = c[1 - along] + k * s / 8.0;
             double sum = 0.0;
             long n = 0;
-            for (const Mesh* m : crossing)
-                for (const Vec3& v : m->vertices)
-                    if (std::fabs(v[1 - along] - y) < s / 8.0 && std::fabs(v[along] - c[along]) < 1.5 * s) {
-                        sum += std::fabs(v.z() - mid);
-                        ++n;
-                    }
+            for (const Vec3& v : near)
+                if (std::fabs(v[1 - along] - y) < s / 8.0) {
+                    sum += std::fabs(v.z() - mid);
+                    ++n;
+                }
             if (n > 0 && sum / static_cast<double>(n) > best_score) {
                 best_score = sum / static_cast<double>(n);
                 best = y;
