@@ -118,8 +118,9 @@ public:
     /// `ignore` and those with ids below `first_id`.
     ///
     /// Every test is exact, so whether `candidate` meets an element does not depend on the others
-    /// stored: ids found at some point (`first_id` 0), still stored later (`contains`), and the
-    /// ids found then from the `next_id` of that point on are what a query then would find. A
+    /// stored: for the same candidate and `ignore`, the ids found at some point (`first_id` 0) that
+    /// are still stored later (`contains`), and the ids found then from the `next_id` of that
+    /// point on, are what a query then would find. A
     /// caller may so run the costly part of its queries in parallel ahead of a serial loop.
     /// \throw InvalidInput bad indices or non-finite coordinates in `candidate`
     [[nodiscard]] std::vector<int> colliding(const Mesh& candidate, const std::vector<int>& ignore = {}, int first_id = 0) const;

@@ -1814,11 +1814,12 @@ private:
         const double s = ts.spacing;
         const double mid = 0.5 * (sw_.box.min.z() + sw_.box.max.z());
         double best = c[1 - along], best_score = -1.0;
-        // The vertices some line counts (within 5/8 spacing across, 1.5 along), in their order.
+        // The vertices some line can count (within 5/8 spacing across, kept with room to spare for
+        // rounding, and 1.5 along), in their order.
         std::vector<Vec3> near;
         for (const Mesh* m : crossing)
             for (const Vec3& v : m->vertices)
-                if (std::fabs(v[1 - along] - c[1 - along]) < 0.625 * s && std::fabs(v[along] - c[along]) < 1.5 * s) near.push_back(v);
+                if (std::fabs(v[1 - along] - c[1 - along]) < 0.75 * s && std::fabs(v[along] - c[along]) < 1.5 * s) near.push_back(v);
         for (int k = -4; k <= 4; ++k) {
             const double y = c[1 - along] + k * s / 8.0;
             double sum = 0.0;
@@ -3385,8 +3386,9 @@ private:
                 c.fallback_hits = collider_.colliding(c.fallback, ignore);
                 c.fallback_hits_known = true;
             }
-            // A new thread that meets something is cut clear of it (trim_thread, below).
-            if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh)) {
+            // A new thread that meets something is cut clear of it (trim_thread, below, which ignores
+            // nothing).
+            if (c.change->kind == Kind::Added && quilt::is_elongated(c.change->mesh) && ignore.empty()) {
                 c.hit_faces = c.hits.empty() ? std::vector<char>(c.embedded.faces.size(), 0) : collider_.colliding_faces(c.embedded);
                 c.faces_known = true;
             }
