@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 
@@ -546,6 +547,62 @@ TEST(ElementCollider, QueriesFromAnIdOnCompleteEarlierAnswers) {
     }
     EXPECT_GT(joined, 5U);       // later elements were met
     EXPECT_GT(kept_faces, 10U);  // and the face answers were compared
+}
+
+TEST(ElementCollider, FirstCollidingFacesFlagOneFacePerElementAndGroup) {
+    // Per element met and group of faces that meets it: exactly one flag, on a face that
+    // colliding_faces flags too. Asked of all elements at once: a flag on a face meeting each
+    // element in each group that meets it, and no more flags than such pairs.
+    std::mt19937 rng(5);
+    const auto placed = random_spheres(rng, 60, 0.2, 0.6);
+    const auto queries = random_spheres(rng, 30, 0.8, 1.4);
+    ElementCollider collider;
+    for (const Sphere& p : placed) collider.add(p.mesh);
+    std::size_t met = 0, split = 0;
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+        const Mesh& m = queries[q].mesh;
+        std::vector<int> group(m.faces.size());  // by slabs along x
+        for (std::size_t f = 0; f < m.faces.size(); ++f)
+            group[f] = static_cast<int>(std::floor((m.vertices[static_cast<std::size_t>(m.faces[f][0])].x() - queries[q].c.x()) / 0.5));
+        const std::vector<char> all = collider.first_colliding_faces(m, group);
+        const std::vector<char> full = collider.colliding_faces(m);
+        std::size_t pairs = 0;
+        for (int id : collider.colliding(m)) {
+            std::vector<int> others;
+            for (int k = 0; k < static_cast<int>(placed.size()); ++k)
+                if (k != id) others.push_back(k);
+            const std::vector<char> mine = collider.colliding_faces(m, others);
+            const std::vector<char> first = collider.first_colliding_faces(m, group, others);
+            std::map<int, int> flags, meets;  // per group
+            for (std::size_t f = 0; f < m.faces.size(); ++f) {
+                if (first[f]) {
+                    EXPECT_TRUE(mine[f]) << "query " << q << " element " << id << " face " << f;
+                    ++flags[group[f]];
+                }
+                if (mine[f]) ++meets[group[f]];
+            }
+            for (const auto& [g, n] : meets) {
+                EXPECT_EQ(flags[g], 1) << "query " << q << " element " << id << " group " << g;
+                bool flagged = false;
+                for (std::size_t f = 0; f < m.faces.size(); ++f) flagged = flagged || (group[f] == g && mine[f] && all[f]);
+                EXPECT_TRUE(flagged) << "query " << q << " element " << id << " group " << g;
+            }
+            pairs += meets.size();
+            for (const auto& [g, n] : flags) EXPECT_GT(meets[g], 0) << "query " << q << " element " << id << " group " << g;
+            ++met;
+            split += meets.size() > 1 ? 1U : 0U;
+            // One group: one face per element.
+            const std::vector<char> one = collider.first_colliding_faces(m, {}, others);
+            EXPECT_EQ(std::count(one.begin(), one.end(), 1), 1) << "query " << q << " element " << id;
+        }
+        EXPECT_LE(static_cast<std::size_t>(std::count(all.begin(), all.end(), 1)), pairs) << "query " << q;
+        for (std::size_t f = 0; f < m.faces.size(); ++f)
+            if (all[f]) EXPECT_TRUE(full[f]) << "query " << q << " face " << f;
+    }
+    EXPECT_GT(met, 20U);   // elements were met
+    EXPECT_GT(split, 5U);  // and often by several groups
+    const Mesh& m = queries.front().mesh;
+    EXPECT_THROW((void)collider.first_colliding_faces(m, std::vector<int>(m.faces.size() + 1, 0)), InvalidInput);
 }
 
 TEST(ElementCollider, HugeElementAndTouching) {

@@ -879,6 +879,7 @@ struct ElementCollider::Impl {
     struct Query {
         Prepared c;
         std::vector<int> faces, ids;
+        std::vector<Box> boxes;  ///< per prim of c
     };
     Query prepare_query(const Mesh& candidate, const std::vector<int>& ignore, int first_id) const {
         Query q;
@@ -923,6 +924,7 @@ struct ElementCollider::Impl {
         }
         q.c.tree.build(kept_boxes, iota_ids(kept_boxes.size()));
         q.c.box = q.c.tree.root_box();
+        q.boxes = std::move(kept_boxes);
         return q;
     }
 
@@ -1019,6 +1021,41 @@ std::vector<char> ElementCollider::colliding_faces(const Mesh& candidate, const 
             return hits > max_hits;
         };
         if (traverse_from(q.c.tree, e.tree, false, {0, 0}, mark, stack)) break;
+    }
+    return hit;
+}
+
+std::vector<char> ElementCollider::first_colliding_faces(const Mesh& candidate, const std::vector<int>& group, const std::vector<int>& ignore,
+                                                         int first_id) const {
+    if (!group.empty() && group.size() != candidate.faces.size())
+        throw InvalidInput("ElementCollider::first_colliding_faces: one group per face of the candidate is needed");
+    std::vector<char> hit(candidate.faces.size(), 0);
+    const Impl::Query q = impl_->prepare_query(candidate, ignore, first_id);
+    if (q.ids.empty()) return hit;
+    // One tree per group, of the faces that reach into some nearby element's box.
+    std::vector<std::pair<int, int>> order;  // (group, prim)
+    for (std::size_t i = 0; i < q.faces.size(); ++i)
+        order.emplace_back(group.empty() ? 0 : group[static_cast<std::size_t>(q.faces[i])], static_cast<int>(i));
+    std::sort(order.begin(), order.end());
+    std::vector<BoxTree> trees;
+    for (std::size_t k = 0; k < order.size();) {
+        std::vector<int> members;
+        const int g = order[k].first;
+        for (; k < order.size() && order[k].first == g; ++k) members.push_back(order[k].second);
+        trees.emplace_back();
+        trees.back().build(q.boxes, members);
+    }
+    std::vector<NodePair> stack;
+    for (int id : q.ids) {
+        const Prepared& e = impl_->entries[static_cast<std::size_t>(id)]->geometry;
+        if (e.tree.empty() || !overlap(q.c.box, e.box)) continue;
+        auto first = [&](int i, int j) {
+            if (!prims_intersect(q.c.prims[static_cast<std::size_t>(i)], e.prims[static_cast<std::size_t>(j)])) return false;
+            hit[static_cast<std::size_t>(q.faces[static_cast<std::size_t>(i)])] = 1;
+            return true;
+        };
+        for (const BoxTree& t : trees)
+            if (overlap(t.root_box(), e.box)) traverse_from(t, e.tree, false, {0, 0}, first, stack);
     }
     return hit;
 }

@@ -137,6 +137,17 @@ public:
     [[nodiscard]] std::vector<char> colliding_faces(const Mesh& candidate, const std::vector<int>& ignore = {},
                                                     std::size_t max_hits = static_cast<std::size_t>(-1), int first_id = 0) const;
 
+    /// Per face of `candidate`: 1 at the first face found to meet each stored element it meets (not
+    /// in `ignore`, with an id of at least `first_id`), per `group` of faces (one number per face
+    /// of `candidate`; empty: all faces in one group), 0 elsewhere. The flags are a subset of
+    /// colliding_faces' (at least one per element and group met), found at about the cost of
+    /// `colliding` per group: each test of a group against an element stops at its first hit. A
+    /// quick first pass for a caller whose verdict only worsens as faces are flagged: where it
+    /// already fails on these flags, it fails on all of them.
+    /// \throw InvalidInput a `group` of the wrong size, bad indices or non-finite coordinates in `candidate`
+    [[nodiscard]] std::vector<char> first_colliding_faces(const Mesh& candidate, const std::vector<int>& group = {},
+                                                          const std::vector<int>& ignore = {}, int first_id = 0) const;
+
     /// Number of stored (added and not removed) elements.
     [[nodiscard]] std::size_t size() const;
 

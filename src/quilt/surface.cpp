@@ -1991,11 +1991,23 @@ private:
             std::vector<SurfacePoint> anchors;
             Mesh embedded;
             if (part.faces.empty() || !embed(part, source, false, &anchors, &embedded, nullptr)) return;
+            const double margin = kTrimMargin * width;
+            // Most tries meet crossing threads all along: no piece is long enough. The first face
+            // found to meet each element in each stretch of a quarter of the length needed tells
+            // most of them (first_colliding_faces, at about the cost of `colliding`); a flag more
+            // only shortens the free spans, so a try that fails on these fails on all its hits.
+            std::vector<int> stretch(part.faces.size());
+            for (std::size_t f = 0; f < part.faces.size(); ++f) {
+                double along_at = 0.0;
+                for (int k = 0; k < 3; ++k) along_at += part.vertices[static_cast<std::size_t>(part.faces[f][k])][along];
+                stretch[f] = static_cast<int>(std::floor((along_at / 3.0 - c[along]) / (0.25 * kTrimMinLength * width)));
+            }
+            const std::vector<char> first = collider_.first_colliding_faces(embedded, stretch);
+            for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = first[f];
+            if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * width) return;
             const std::vector<char> hit = collider_.colliding_faces(embedded);
             for (std::size_t f = 0; f < kept.size(); ++f) bad[kept[f]] = hit[f];
-            const double margin = kTrimMargin * width;
-            // Most tries meet crossing threads all along: no piece long enough (checked before the
-            // dearer test for folds, which only adds flags).
+            // Then on all of them (checked before the dearer test for folds, which only adds flags).
             if (quilt::longest_free_span(m, bad, margin) < kTrimMinLength * width) return;
             if (count_self_intersections(embedded, 1) > 0) {
                 const std::vector<char> folded = self_intersecting_faces(embedded);
