@@ -206,6 +206,44 @@ bool pieces_overlap(const Vec3& a, const Piece& p, const Piece& q) {
 /// Exact: do two faces that share at least one canonical vertex have points in common other than
 /// the shared vertex or edge? (Both faces with the same three vertices: true.)
 bool adjacent_faces_overlap(const Prim& f, const Prim& g) {
+    if (f.kind == Kind::Triangle && g.kind == Kind::Triangle) {
+        // The common case, as below without the bookkeeping for flat faces: a triangle's corners
+        // lie apart, so its three canonical vertices are distinct.
+        int shared = 0, fi[2] = {0, 0}, fo = 0, go = 0, gmask = 0;
+        for (int i = 0; i < 3; ++i) {
+            bool in_g = false;
+            for (int j = 0; j < 3; ++j)
+                if (f.v[static_cast<std::size_t>(i)] == g.v[static_cast<std::size_t>(j)]) {
+                    in_g = true;
+                    gmask |= 1 << j;
+                }
+            if (in_g) {
+                if (shared < 2) fi[shared] = i;
+                ++shared;
+            } else {
+                fo = i;
+            }
+        }
+        for (int j = 0; j < 3; ++j)
+            if (!(gmask & (1 << j))) go = j;
+        if (shared == 0) return prims_intersect(f, g);
+        if (shared == 3) return true;
+        if (shared == 2) {
+            const Vec3 &a = f.c[static_cast<std::size_t>(fi[0])], &b = f.c[static_cast<std::size_t>(fi[1])];
+            const Vec3 &c = f.c[static_cast<std::size_t>(fo)], &d = g.c[static_cast<std::size_t>(go)];
+            if (clearly_opposite(a, b, c, d)) return false;
+            const P3 A = pt(a), B = pt(b), C = pt(c), D = pt(d);
+            return CGAL::coplanar(A, B, C, D) && CGAL::coplanar_orientation(A, B, C, D) == CGAL::POSITIVE;
+        }
+        // One shared corner: the other two of each, in face order.
+        const int fs = fi[0];
+        const Vec3& a = f.c[static_cast<std::size_t>(fs)];
+        int gs = 0;
+        while (!(gmask & (1 << gs))) ++gs;
+        const Piece pf{true, f.c[static_cast<std::size_t>(fs == 0 ? 1 : 0)], f.c[static_cast<std::size_t>(fs == 2 ? 1 : 2)]};
+        const Piece pg{true, g.c[static_cast<std::size_t>(gs == 0 ? 1 : 0)], g.c[static_cast<std::size_t>(gs == 2 ? 1 : 2)]};
+        return pieces_overlap(a, pf, pg);
+    }
     // Distinct canonical vertices of each face, with a position for each.
     struct Corners {
         int n = 0;
