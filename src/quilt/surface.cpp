@@ -1927,10 +1927,14 @@ private:
         double best_length = 0.0;
         // The swatch thread through c, shifted k / kThreadShifts of two spacings along itself and
         // `du` across.
-        auto shifted = [&](int k, double du) {
+        auto shift_of = [&](int k, double du) {
             Vec3 shift = Vec3::Zero();
             shift[along] = c[along] - 0.5 * (box.min[along] + box.max[along]) + 2.0 * k * ts.spacing / kThreadShifts;
             shift[1 - along] = c[1 - along] + du - 0.5 * (box.min[1 - along] + box.max[1 - along]);
+            return shift;
+        };
+        auto shifted = [&](int k, double du) {
+            const Vec3 shift = shift_of(k, du);
             Mesh m = src;
             for (Vec3& v : m.vertices) v += shift;
             return m;
@@ -1964,12 +1968,33 @@ private:
         // The tries are independent (everything they call is const): they run in parallel, and
         // are then taken in their serial order, so the outcome does not depend on the threads.
         std::vector<std::pair<double, Mesh>> all(static_cast<std::size_t>(kThreadLines * kThreadShifts));  // frame free run, thread
+        // woven and free_run read only the crossing threads' vertices within a cell or two of the
+        // try's box, and only their least and greatest heights per cell: the vertices within two
+        // widths of the tries' boxes are gathered once, instead of all the threads read per try.
+        Mesh near_crossing;
+        {
+            Box3 reach;  // the tries' boxes: the extreme shifts of the thread's box, scaled about c
+            const double du = (kThreadLines / 2) * ts.spacing / 8.0;
+            for (int k : {0, kThreadShifts - 1})
+                for (double across : {-du, du})
+                    for (const Vec3& corner : {box.min, box.max}) {
+                        const Vec3 v = corner + shift_of(k, across);
+                        reach.extend(Vec3(c.x() + resize * (v.x() - c.x()), c.y() + resize * (v.y() - c.y()), v.z()));
+                    }
+            const Vec3 margin(2.0 * width, 2.0 * width, 0.0);
+            const Vec3 lo = reach.min - margin, hi = reach.max + margin;
+            for (const Mesh* o : crossing)
+                for (const Vec3& v : o->vertices)
+                    if (v.x() >= lo.x() && v.x() <= hi.x() && v.y() >= lo.y() && v.y() <= hi.y()) near_crossing.vertices.push_back(v);
+        }
+        const std::vector<const Mesh*> gathered{&near_crossing};
+        const std::vector<const Mesh*>& read = std::isfinite(width) && width > 0.0 ? gathered : crossing;
         tbb::parallel_for(std::size_t{0}, all.size(), [&](std::size_t t) {
             const int line = static_cast<int>(t) / kThreadShifts, k = static_cast<int>(t) % kThreadShifts;
             Mesh m = shifted(k, (line - kThreadLines / 2) * ts.spacing / 8.0);
             for (Vec3& v : m.vertices) v = Vec3(c.x() + resize * (v.x() - c.x()), c.y() + resize * (v.y() - c.y()), v.z());
-            Mesh w = quilt::woven(m, along, crossing, width, sw_.box.min.z(), sw_.box.max.z());
-            all[t] = {free_run(w, along, crossing, width), std::move(w)};
+            Mesh w = quilt::woven(m, along, read, width, sw_.box.min.z(), sw_.box.max.z());
+            all[t] = {free_run(w, along, read, width), std::move(w)};
         });
         std::vector<std::pair<double, Mesh>> tries;
         for (auto& t : all)
