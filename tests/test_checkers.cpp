@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace meshquilt::test {
 namespace {
@@ -250,6 +251,66 @@ TEST(CheckerLinkingNumber, ExactOnPolygons) {
     }
     EXPECT_NEAR(std::abs(linking_number(a, twice)), 2.0, 1e-9);
     EXPECT_THROW((void)linking_number({V(0, 0, 0), V(1, 0, 0)}, a), std::invalid_argument);
+}
+
+TEST(CheckerLinkingNumber, CrossingCountIsTheRoundedGaussIntegral) {
+    // The fixed cases of ExactOnPolygons, sign included.
+    const auto a = circle(V(0, 0, 0), V(1, 0, 0), V(0, 1, 0));
+    const auto hopf = circle(V(1, 0, 0), V(1, 0, 0), V(0, 0, 1), 37);
+    const std::vector<Vec3> reversed(hopf.rbegin(), hopf.rend());
+    for (const auto& b : {hopf, reversed, circle(V(5, 0, 0), V(1, 0, 0), V(0, 0, 1)), circle(V(2.5, 0, 0), V(1, 0, 0), V(0, 1, 0)),
+                          circle(V(2.1, 0, 0), V(1, 0, 0), V(0, 0, 1))}) {
+        EXPECT_EQ(crossing_linking_number(a, b), std::lround(linking_number(a, b)));
+        EXPECT_EQ(crossing_linking_number(b, a), std::lround(linking_number(b, a)));
+    }
+    EXPECT_EQ(std::abs(crossing_linking_number(a, hopf)), 1);
+    EXPECT_EQ(crossing_linking_number(a, reversed), -crossing_linking_number(a, hopf));
+    std::vector<Vec3> twice;
+    for (int k = 0; k < 200; ++k) {
+        const double t = 2.0 * M_PI * k / 200;
+        const double rho = 1.0 + 0.3 * std::cos(2 * t);
+        twice.push_back(V(rho * std::cos(t), rho * std::sin(t), 0.3 * std::sin(2 * t)));
+    }
+    EXPECT_EQ(std::abs(crossing_linking_number(a, twice)), 2);
+    EXPECT_THROW((void)crossing_linking_number({V(0, 0, 0), V(1, 0, 0)}, a), std::invalid_argument);
+
+    // Axis-aligned rings, whose rows of vertices line up with each other (a modelled chain).
+    const Mesh r0 = sh::torus(1.0, 0.2);
+    const Mesh r1 = sh::torus(1.0, 0.2, 32, 12, V(1.3, 0, 0), sh::rotation(V(1, 0, 0), M_PI / 2));
+    const Mesh r2 = sh::torus(1.0, 0.2, 32, 12, V(2.6, 0, 0));
+    EXPECT_TRUE(links_once(ring_centerline(r0), ring_centerline(r1)));
+    EXPECT_TRUE(links_once(ring_centerline(r1), ring_centerline(r2)));
+    EXPECT_FALSE(links_once(ring_centerline(r0), ring_centerline(r2)));
+
+    // Random pairs of bumpy closed curves near each other, linked or not, with any number of
+    // vertices: wherever the Gauss integral is clearly an integer (the curves keep apart), the
+    // count agrees with it.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    auto bumpy = [&](int n) {
+        const Vec3 c(0.8 * unit(rng), 0.8 * unit(rng), 0.8 * unit(rng));
+        const Vec3 u = V(unit(rng), unit(rng), unit(rng)).normalized();
+        const Vec3 v = u.cross(V(unit(rng), unit(rng), unit(rng))).normalized();
+        const double r = 1.0 + 0.3 * unit(rng), wobble = 0.3 * unit(rng), phase = M_PI * unit(rng);
+        std::vector<Vec3> pts;
+        for (int k = 0; k < n; ++k) {
+            const double t = 2.0 * M_PI * k / n;
+            pts.push_back(c + r * (std::cos(t) * u + std::sin(t) * v) + wobble * std::sin(3 * t + phase) * u.cross(v));
+        }
+        return pts;
+    };
+    int compared = 0, linked = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const auto p = bumpy(3 + trial % 60), q = bumpy(3 + (7 * trial) % 50);
+        const double lk = linking_number(p, q);
+        if (distance_to_integer(lk) > 1e-3) continue;
+        ++compared;
+        linked += std::lround(lk) != 0;
+        ASSERT_EQ(crossing_linking_number(p, q), std::lround(lk)) << "trial " << trial;
+        ASSERT_EQ(links_once(p, q), std::abs(std::lround(lk)) == 1) << "trial " << trial;
+    }
+    EXPECT_GT(compared, 1900);
+    EXPECT_GT(linked, 200);
 }
 
 TEST(CheckerLinkingNumber, HopfLinkOfToriIsOne) {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 namespace meshquilt {
@@ -84,8 +86,65 @@ double linking_number(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return total / (4.0 * M_PI);
 }
 
+int crossing_linking_number(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    if (a.size() < 3 || b.size() < 3) throw std::invalid_argument("crossing_linking_number: each curve needs >= 3 points");
+    auto gauss = [&] { return static_cast<int>(std::lround(linking_number(a, b))); };
+    // The shadows on the plane normal to a fixed direction, away from the axes and their
+    // diagonals so that the rows and columns of a modelled ring do not line up in it.
+    const Vec3 d = Vec3(0.5714, 0.3162, 0.7571).normalized();
+    const Vec3 e1 = d.cross(Vec3(0.0, 0.0, 1.0)).normalized(), e2 = d.cross(e1);
+    struct Shadow {
+        std::vector<Eigen::Vector2d> p;
+        std::vector<Eigen::Vector2d> lo, hi;  ///< per segment i (point i to i + 1): its box
+    };
+    auto shadow = [&](const std::vector<Vec3>& c) {
+        Shadow s;
+        for (const Vec3& q : c) s.p.emplace_back(q.dot(e1), q.dot(e2));
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const Eigen::Vector2d &u = s.p[i], &v = s.p[(i + 1) % c.size()];
+            s.lo.push_back(u.cwiseMin(v));
+            s.hi.push_back(u.cwiseMax(v));
+        }
+        return s;
+    };
+    const Shadow sa = shadow(a), sb = shadow(b);
+    // Shewchuk's error bound for the orientation of three points (ccwerrboundA): a determinant
+    // larger than it in magnitude has the sign of the exact one of the rounded shadow points.
+    constexpr double kOrientBound = (3.0 + 16.0 * std::numeric_limits<double>::epsilon()) * std::numeric_limits<double>::epsilon();
+    bool unsure = false;
+    auto side = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+        const double l = (q.x() - p.x()) * (r.y() - p.y()), m = (q.y() - p.y()) * (r.x() - p.x());
+        const double det = l - m;
+        if (!(std::fabs(det) > kOrientBound * (std::fabs(l) + std::fabs(m)))) unsure = true;
+        return det > 0.0;
+    };
+    int twice = 0;  // the sum of the crossings' signs: twice the linking number
+    for (std::size_t i = 0; i < a.size() && !unsure; ++i) {
+        const std::size_t i1 = (i + 1) % a.size();
+        for (std::size_t j = 0; j < b.size(); ++j) {
+            if ((sa.lo[i].array() > sb.hi[j].array()).any() || (sb.lo[j].array() > sa.hi[i].array()).any()) continue;
+            const std::size_t j1 = (j + 1) % b.size();
+            const bool apart = side(sa.p[i], sa.p[i1], sb.p[j]) == side(sa.p[i], sa.p[i1], sb.p[j1]) ||
+                               side(sb.p[j], sb.p[j1], sa.p[i]) == side(sb.p[j], sb.p[j1], sa.p[i1]);
+            if (unsure) break;
+            if (apart) continue;
+            // The shadows cross: the sign is the Gauss integrand's on the pair,
+            // (p2 - p1) x (p4 - p3) . (p1 - p3) (linking_number's `triple`).
+            const Vec3 r12 = a[i1] - a[i], r34 = b[j1] - b[j], r31 = a[i] - b[j];
+            const double triple = r12.cross(r34).dot(r31);
+            if (!(std::fabs(triple) > 1e-12 * r12.norm() * r34.norm() * r31.norm())) {
+                unsure = true;  // the segments nearly meet
+                break;
+            }
+            twice += triple > 0.0 ? 1 : -1;
+        }
+    }
+    if (unsure || twice % 2 != 0) return gauss();
+    return twice / 2;
+}
+
 bool links_once(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    return a.size() >= 3 && b.size() >= 3 && std::lround(std::fabs(linking_number(a, b))) == 1;
+    return a.size() >= 3 && b.size() >= 3 && std::abs(crossing_linking_number(a, b)) == 1;
 }
 
 }  // namespace meshquilt
