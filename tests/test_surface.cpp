@@ -497,9 +497,10 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return info.param.name; });
 
 // The stages that run in parallel (the kernel's merge plans, the tries of a thread laid into a
-// gap, the embedding of a patch's changes) take their results in a fixed order, so one thread
-// gives the output that all give, to the bit. The weave exercises the threads laid into gaps and
-// cut clear of folds and tears.
+// gap, the embedding of a patch's changes, the batches of a mended ring's poses) take their
+// results in a fixed order, so one thread gives the output that all give, to the bit. The weave
+// exercises the threads laid into gaps and cut clear of folds and tears; the chain mail the
+// mended rings, whose batches are as many poses as twice the cores (two with one thread).
 class SurfaceThreads : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SurfaceThreads, OneThreadGivesTheOutputOfAll) {
@@ -514,8 +515,15 @@ TEST_P(SurfaceThreads, OneThreadGivesTheOutputOfAll) {
         EXPECT_GT(all.r.surface.threads_filled, 0);
         EXPECT_GT(all.r.surface.threads_torn, 0);
     }
+    if (std::string(GetParam()) == "chainmail") {
+        EXPECT_GT(all.r.surface.elements_mended, 0);
+        EXPECT_GT(all.r.surface.ring_holes_filled, 0);
+    }
     EXPECT_GT(all.r.surface.elements_folded, 0);
-    // The counters the parallel stages keep per task and sum.
+    // The counters the parallel stages keep per task and sum, or per try taken in order.
+    EXPECT_EQ(all.r.surface.elements_mended, one.r.surface.elements_mended);
+    EXPECT_EQ(all.r.surface.ring_holes_filled, one.r.surface.ring_holes_filled);
+    EXPECT_EQ(all.r.surface.elements_torn, one.r.surface.elements_torn);
     EXPECT_EQ(all.r.surface.elements_folded, one.r.surface.elements_folded);
     EXPECT_EQ(all.r.surface.threads_torn, one.r.surface.threads_torn);
     EXPECT_EQ(all.r.surface.elements_enlarged, one.r.surface.elements_enlarged);

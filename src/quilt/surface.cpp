@@ -36,6 +36,7 @@
 #include <unordered_map>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace meshquilt {
 
@@ -132,6 +133,10 @@ constexpr int kHoleTurnSteps = 3;
 /// swatch: its enlarged rings stood too close once thickened back (two below the size floor and
 /// a region at 1.158 on the eight).
 constexpr std::array<double, 4> kRingSizes{1.0, 0.92, 0.85, 1.1};
+/// mend_slot tests this many poses per core at once, once the map's scale for the ring is known
+/// (most slots refuse all their poses: on spot with chain mail 4,613 of 5,031 lattice slots tried
+/// all ten).
+constexpr int kMendBatch = 2;
 /// ... and, when no pose of the swatch's ring fits, tilted by this much (radians) either way about
 /// the swatch's x and y axes (ring_variant: kHoleVariants poses in all, the untilted first, each
 /// lifted so it stays above the base). A ring between two lattices that meet at an angle sits
@@ -1488,24 +1493,25 @@ private:
     /// its centre in the frame, once (see apply). An element of a lattice (keeps_lattice) only
     /// beyond kLatticeSizeDrift: its patch's frame was scaled for its size (fit_lattice_scale).
     bool embed_sized(const Mesh& m, int source, bool fresh, const quilt::FlatPatch& flat, const quilt::PatchLocator& locator, double hs,
-                     double local, const Reach* reach, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr) const {
+                     double local, const Reach* reach, std::vector<SurfacePoint>* anchors, Mesh* embedded, double* resize = nullptr,
+                     bool* torn_seen = nullptr) const {
         if (resize) *resize = 1.0;
         if (!to_surface(m, flat, locator, hs, anchors, reach)) return false;
         *embedded = embed_element(*anchors, m.faces);
-        if (!fresh || source < 0 || height_scale_ > 0) return !torn(*embedded, source, local);
+        if (!fresh || source < 0 || height_scale_ > 0) return !torn(*embedded, source, local, torn_seen);
         // What the map did to this element's area (not what deformation did: that was the kernel's
         // choice, bounded there).
         const double ratio = size_ratio(m, *anchors, *embedded, local);
         const double drift = keeps_lattice(source) ? kLatticeSizeDrift : kMaxSizeDrift;
-        if (ratio < drift && ratio > 1.0 / drift) return !torn(*embedded, source, local);
+        if (ratio < drift && ratio > 1.0 / drift) return !torn(*embedded, source, local, torn_seen);
         const double f = 1.0 / std::sqrt(ratio);
         const Mesh fixed = resized_in_frame(m, f);
         std::vector<SurfacePoint> a2;
-        if (!to_surface(fixed, flat, locator, hs, &a2)) return !torn(*embedded, source, local);
+        if (!to_surface(fixed, flat, locator, hs, &a2)) return !torn(*embedded, source, local, torn_seen);
         *anchors = std::move(a2);
         *embedded = embed_element(*anchors, m.faces);
         if (resize) *resize = f;
-        return !torn(*embedded, source, local);
+        return !torn(*embedded, source, local, torn_seen);
     }
 
     /// Beyond the paper: an element whose embedding pulled a face out to more than kTornFace times
@@ -1513,14 +1519,19 @@ private:
     /// map, a face spanned across a crease or joining parts that the map puts apart; it does not go
     /// in there (embed_sized fails). Threads and strands are cut where they tear instead
     /// (stretched_faces), and a run with --height stretches every element in its thickness.
-    bool torn(const Mesh& embedded, int source, double local) const {
+    /// With `seen`, a torn element sets it instead of being counted (mend_slot counts it once the
+    /// pose is reached in order).
+    bool torn(const Mesh& embedded, int source, double local, bool* seen = nullptr) const {
         if (source < 0 || height_scale_ > 0 || quilt::is_elongated(sw_.elements[static_cast<std::size_t>(source)]) ||
             quilt::is_strand_source(sw_, source))
             return false;
         const double limit = kTornFace * largest_face_ * scale_ * scale_ * local * local;
         for (std::size_t f = 0; f < embedded.faces.size(); ++f)
             if (face_area(embedded, f) > limit) {
-                ++torn_tries_;  // the report's elements_torn (embed_sized runs in parallel in apply)
+                if (seen)
+                    *seen = true;
+                else
+                    ++torn_tries_;  // the report's elements_torn (embed_sized runs in parallel in apply)
                 return true;
             }
         return false;
@@ -3129,6 +3140,12 @@ private:
         *lasting = true;  // every pose collided or folded: more rings will not change that
         const double want = std::max(mesh_area(sw_.elements[static_cast<std::size_t>(j)]) * scale_ * scale_ * local * local, 1e-300);
         double fit = fit_io ? *fit_io : 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
+        const std::vector<double>& turn_list = turns ? *turns : kTurns;
+        // A pose's test once it is on the surface (MendTry::test) costs most of the mending: the
+        // poses past the first embedding are tested in batches, in parallel, and their outcomes
+        // are then taken in order as one after the other would have been, so a batch changes no
+        // outcome, only tests a few poses past the first that fits (kMendBatch per core).
+        const auto batch = static_cast<std::size_t>(std::max(2, kMendBatch * tbb::this_task_arena::max_concurrency()));
         for (int variant = 0; variant < variants; ++variant) {
             // Tilted tries stop with their budget before their poses are screened: past it every
             // pose that passed the screen was refused anyway, and each hole still screened its
@@ -3141,82 +3158,166 @@ private:
             const double src_diameter = diameter_of(j, variant);
             const quilt::SolidGrid* mine = clash ? &solid_of(j, variant) : nullptr;
             const std::size_t sizes = clash && !(sw_.thinned > 0.0) ? kRingSizes.size() : kRingSizes.size() - 1;
+            long* budget_count = clash ? (variant == 0 ? &hole_tries_ : &tilt_tries_) : nullptr;
+            const long budget = clash ? (variant == 0 ? hole_budget() : tilt_budget()) : 0;
+            // The pose (size, turn) in order: its frame mesh m = M v + b for the swatch ring's
+            // vertices v (xy), resized by f about its area centroid as resized_in_frame does.
+            auto pose_at = [&](double turn, double f, Mesh* m, Eigen::Matrix2d* M, Vec2* b) {
+                Eigen::Matrix2d T;
+                T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
+                const Eigen::Matrix2d M0 = T * pose.A;
+                const Vec2 b0 = T * (pose.A * shift + pose.t - c) + c;
+                *M = f * M0;
+                *b = f * b0 + (1.0 - f) * (M0 * src_centroid.head<2>() + b0);
+                if (m->vertices.size() != src.vertices.size()) *m = src;
+                for (std::size_t v = 0; v < m->vertices.size(); ++v) {
+                    const Vec2 q = *M * src.vertices[v].head<2>() + *b;
+                    m->vertices[v] = Vec3(q.x(), q.y(), src.vertices[v].z());
+                }
+            };
+            std::vector<std::pair<std::size_t, double>> order;  // (size, turn)
             for (std::size_t size = 0; size < sizes; ++size)
-                for (const double turn : turns ? *turns : kTurns) {
+                for (const double turn : turn_list) order.push_back({size, turn});
+            std::vector<MendTry> tries;
+            for (std::size_t next = 0; next < order.size();) {
+                tries.clear();
+                if (fit == 0.0) {
+                    // Until the first pose is embedded the map's scale for the ring is not known:
+                    // one pose at a time.
+                    const auto [size, turn] = order[next++];
                     const double shrink = kRingSizes[size];
-                    Eigen::Matrix2d T;
-                    T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);
-                    Mesh m = src;
-                    // m = M v + b for the swatch ring's vertices v (xy), resized by f about its area
-                    // centroid as resized_in_frame does.
-                    const Eigen::Matrix2d M0 = T * pose.A;
-                    const Vec2 b0 = T * (pose.A * shift + pose.t - c) + c;
+                    Mesh m;
                     Eigen::Matrix2d M;
                     Vec2 b;
-                    auto pose_at = [&](double f) {
-                        M = f * M0;
-                        b = f * b0 + (1.0 - f) * (M0 * src_centroid.head<2>() + b0);
-                        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-                            const Vec2 q = M * src.vertices[v].head<2>() + b;
-                            m.vertices[v] = Vec3(q.x(), q.y(), src.vertices[v].z());
-                        }
-                    };
                     if (clash) {
-                        // Tested quickly first, at the swatch size while the map's scale here is not
-                        // known yet (embed_sized changes it only beyond kLatticeSizeDrift).
-                        pose_at((fit > 0.0 ? fit : 1.0) * shrink);
+                        // Tested quickly first, at the swatch size while the map's scale here is
+                        // not known yet (embed_sized changes it only beyond kLatticeSizeDrift).
+                        pose_at(turn, shrink, &m, &M, &b);
                         if ((*clash)(m, *mine, M, b)) continue;
                     }
-                    if (clash && variant == 0 && ++hole_tries_ > hole_budget()) return false;  // fill_ring_holes stops
-                    if (clash && variant > 0 && ++tilt_tries_ > tilt_budget()) return false;  // no more tilted tries
-                    if (fit == 0.0) {
-                        pose_at(1.0);
-                        if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) {
-                            *lasting = false;  // off this patch: another frame may hold it
-                            return false;
-                        }
-                        if (fit_io) *fit_io = fit;
-                        if (clash && fit != 1.0) {
-                            pose_at(fit * shrink);
-                            if ((*clash)(m, *mine, M, b)) continue;
-                        }
+                    if (budget_count && ++*budget_count > budget) return false;  // fill_ring_holes stops, or no more tilted tries
+                    pose_at(turn, 1.0, &m, &M, &b);
+                    if (!embed_sized(m, j, true, flat, locator, hs, local, nullptr, anchors, embedded, &fit)) {
+                        *lasting = false;  // off this patch: another frame may hold it
+                        return false;
                     }
-                    pose_at(fit * shrink);
-                    if (!embed_sized(m, j, false, flat, locator, hs, local, nullptr, anchors, embedded)) {
-                        *lasting = false;
-                        continue;
+                    if (fit_io) *fit_io = fit;
+                    pose_at(turn, fit * shrink, &m, &M, &b);
+                    if (clash && fit != 1.0 && (*clash)(m, *mine, M, b)) continue;
+                    tries.push_back({size, turn, std::move(m)});
+                }
+                // The next poses up to a batch, screened (clash) and counted against the budget as
+                // they would be one after the other; a pose past the budget ends the batch.
+                for (long counted = 0; next < order.size() && tries.size() < batch;) {
+                    const auto [size, turn] = order[next++];
+                    MendTry t{size, turn, {}};
+                    Eigen::Matrix2d M;
+                    Vec2 b;
+                    pose_at(turn, fit * kRingSizes[size], &t.m, &M, &b);
+                    if (clash && (*clash)(t.m, *mine, M, b)) continue;
+                    t.counted = budget_count != nullptr;
+                    if (budget_count && *budget_count + ++counted > budget) {
+                        t.over_budget = true;  // replayed, it ends mend_slot
+                        tries.push_back(std::move(t));
+                        break;
                     }
-                    // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its
-                    // swatch element's size (the square root of the area; the stage promises 1.5).
-                    // Turned it keeps its size, and shrunk further it only loses more: the slot is given
-                    // up (where the shell is lowered most holes fail so, and trying every turn and
-                    // shrink there spent the holes' budget before the rest of the surface was reached).
-                    if (std::sqrt(mesh_area(*embedded) / want) < kMendMinSize) return false;
-                    // Its width too: squashed by a lowered shell a ring can keep its area and lose
-                    // its diameter (a steep ring, or one tilted to rise above the slab). It keeps
-                    // kMendMinWidth of its swatch ring's diameter.
-                    if (narrower_than(*embedded, kMendMinWidth * src_diameter * scale_ * local)) {
-                        if (variant == 0) return false;
-                        continue;
+                    tries.push_back(std::move(t));
+                }
+                tbb::parallel_for(std::size_t{0}, tries.size(), [&](std::size_t i) {
+                    if (!tries[i].over_budget) test_mend_try(tries[i], j, src_diameter, want, around, flat, locator, hs, local);
+                });
+                for (MendTry& t : tries) {
+                    if (t.counted && ++*budget_count > budget) return false;
+                    if (t.torn) ++torn_tries_;
+                    *anchors = std::move(t.anchors);
+                    *embedded = std::move(t.embedded);
+                    switch (t.outcome) {
+                        case MendTry::kOffPatch:
+                            *lasting = false;
+                            continue;
+                        case MendTry::kTooSmall: return false;
+                        case MendTry::kNarrow:
+                            if (variant == 0) return false;
+                            continue;
+                        case MendTry::kOffSize: continue;
+                        default: break;
                     }
-                    if (!is_ring_source(j) && off_size(*embedded, j, local)) continue;
-                    if (plain && variant == 0 && size == 0 && turn == 0.0) *plain = *embedded;  // swap_blocker asks what it hits
-                    if (collider_.collides(*embedded) || count_self_intersections(*embedded, 1) > 0) continue;
-                    if (!is_ring_source(j) && !keeps_clearance_3d(*embedded, local)) continue;
-                    if (interlocked_ && links_with(*embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
+                    if (plain && variant == 0 && t.size == 0 && t.turn == 0.0) *plain = *embedded;  // swap_blocker asks what it hits
+                    if (t.outcome == MendTry::kCollides || t.outcome == MendTry::kCrowds) continue;
+                    if (t.outcome == MendTry::kUnlinked) {
                         *lasting = false;  // a ring mended later may give it a link
                         continue;
                     }
-                    add_element(std::move(*anchors), m.faces, std::move(*embedded), j);
+                    const double shrink = kRingSizes[t.size];
+                    add_element(std::move(*anchors), t.m.faces, std::move(*embedded), j);
                     ++surface_.elements_mended;  // ring_holes_filled counts the hole fillers among them
                     if (variant > 0) ++surface_.ring_holes_tilted;
                     if (shrink > 1.0) ++surface_.ring_holes_enlarged;
                     // Its lattice pose (the turn, not the shrink: its neighbours keep the spacing).
+                    Eigen::Matrix2d T;
+                    T << std::cos(t.turn), -std::sin(t.turn), std::sin(t.turn), std::cos(t.turn);
                     *placed = {j, T * pose.A, T * (pose.A * shift + pose.t - c) + c, 0.0};
                     return true;
                 }
+            }
         }
         return false;
+    }
+
+    /// A pose of mend_slot's ring (`m`, in the frame) and what became of it on the surface.
+    struct MendTry {
+        std::size_t size = 0;  ///< index into kRingSizes
+        double turn = 0.0;
+        Mesh m;
+        bool counted = false;      ///< counts against fill_ring_holes' budget
+        bool over_budget = false;  ///< past it: not tested, mend_slot stops here
+        enum Outcome { kOffPatch, kTooSmall, kNarrow, kOffSize, kCollides, kCrowds, kUnlinked, kFits } outcome = kOffPatch;
+        bool torn = false;  ///< refused as torn (counted in the report when the pose is reached)
+        std::vector<SurfacePoint> anchors;
+        Mesh embedded;
+    };
+
+    /// mend_slot's test of a pose of ring `j` (of diameter `src_diameter` in the swatch) on the
+    /// surface; reads the standing elements only, so poses are tested in parallel.
+    void test_mend_try(MendTry& t, int j, double src_diameter, double want, const std::vector<int>& around, const quilt::FlatPatch& flat,
+                       const quilt::PatchLocator& locator, double hs, double local) const {
+        if (!embed_sized(t.m, j, false, flat, locator, hs, local, nullptr, &t.anchors, &t.embedded, nullptr, &t.torn)) {
+            t.outcome = MendTry::kOffPatch;
+            return;
+        }
+        // Shrunk, and flattened where the shell is lowered, it keeps kMendMinSize of its swatch
+        // element's size (the square root of the area; the stage promises 1.5). Turned it keeps its
+        // size, and shrunk further it only loses more: the slot is given up (where the shell is
+        // lowered most holes fail so, and trying every turn and shrink there spent the holes'
+        // budget before the rest of the surface was reached).
+        if (std::sqrt(mesh_area(t.embedded) / want) < kMendMinSize) {
+            t.outcome = MendTry::kTooSmall;
+            return;
+        }
+        // Its width too: squashed by a lowered shell a ring can keep its area and lose its
+        // diameter (a steep ring, or one tilted to rise above the slab). It keeps kMendMinWidth of
+        // its swatch ring's diameter.
+        if (narrower_than(t.embedded, kMendMinWidth * src_diameter * scale_ * local)) {
+            t.outcome = MendTry::kNarrow;
+            return;
+        }
+        if (!is_ring_source(j) && off_size(t.embedded, j, local)) {
+            t.outcome = MendTry::kOffSize;
+            return;
+        }
+        if (collider_.collides(t.embedded) || count_self_intersections(t.embedded, 1) > 0) {
+            t.outcome = MendTry::kCollides;
+            return;
+        }
+        if (!is_ring_source(j) && !keeps_clearance_3d(t.embedded, local)) {
+            t.outcome = MendTry::kCrowds;
+            return;
+        }
+        if (interlocked_ && links_with(t.embedded, around, ring_need_[static_cast<std::size_t>(j)]) < ring_need_[static_cast<std::size_t>(j)]) {
+            t.outcome = MendTry::kUnlinked;
+            return;
+        }
+        t.outcome = MendTry::kFits;
     }
 
     /// Beyond the paper: thread `frame` (in the patch frame), whose embedding `embedded` collides
