@@ -3141,7 +3141,7 @@ private:
         const double want = std::max(mesh_area(sw_.elements[static_cast<std::size_t>(j)]) * scale_ * scale_ * local * local, 1e-300);
         double fit = fit_io ? *fit_io : 0.0;  // the frame scale that gives the ring its swatch size on the surface (embed_sized)
         const std::vector<double>& turn_list = turns ? *turns : kTurns;
-        // A pose's test once it is on the surface (MendTry::test) costs most of the mending: the
+        // A pose's test once it is on the surface (test_mend_try) costs most of the mending: the
         // poses past the first embedding are tested in batches, in parallel, and their outcomes
         // are then taken in order as one after the other would have been, so a batch changes no
         // outcome, only tests a few poses past the first that fits (kMendBatch per core).
@@ -3160,8 +3160,8 @@ private:
             const std::size_t sizes = clash && !(sw_.thinned > 0.0) ? kRingSizes.size() : kRingSizes.size() - 1;
             long* budget_count = clash ? (variant == 0 ? &hole_tries_ : &tilt_tries_) : nullptr;
             const long budget = clash ? (variant == 0 ? hole_budget() : tilt_budget()) : 0;
-            // The pose (size, turn) in order: its frame mesh m = M v + b for the swatch ring's
-            // vertices v (xy), resized by f about its area centroid as resized_in_frame does.
+            // A pose turned by `turn`: its frame mesh m = M v + b for the swatch ring's vertices v
+            // (xy), resized by f about its area centroid as resized_in_frame does.
             auto pose_at = [&](double turn, double f, Mesh* m, Eigen::Matrix2d* M, Vec2* b) {
                 Eigen::Matrix2d T;
                 T << std::cos(turn), -std::sin(turn), std::sin(turn), std::cos(turn);

@@ -158,8 +158,8 @@ struct ShellMap::Impl {
     }
 
     /// Barycentric coordinates of texture point `p` in tetrahedron k of face f, solved with the
-    /// factorisation of its edge matrix kept once the texture corners are final (build_factors;
-    /// the same factors as factorising anew, so the same coordinates, at a third of the cost).
+    /// factorisation of its edge matrix kept once the texture corners are final (`factors`, built
+    /// at the end of build(): the same factors as factorising anew, so the same coordinates).
     [[nodiscard]] Eigen::Vector4d tet_coordinates(std::size_t f, int k, const Vec3& p) const {
         const Vec3 t0 = tex_point(f, tets[f][static_cast<std::size_t>(k)][0]);
         const Vec3 l = factors[f][static_cast<std::size_t>(k)].solve(p - t0);
