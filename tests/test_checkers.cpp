@@ -313,6 +313,34 @@ TEST(CheckerLinkingNumber, CrossingCountIsTheRoundedGaussIntegral) {
     EXPECT_GT(linked, 200);
 }
 
+TEST(CheckerLinkingNumber, CrossingCountWhereShadowsMeetAtVertices) {
+    // A Hopf link whose second ring has its vertices near the first ring's shadow moved onto the
+    // line through a vertex of the first along the shadow direction: the shadows meet at vertices,
+    // which no orientation can call, yet the rings keep apart and the count is still the link.
+    const Vec3 d = shadow_direction();
+    EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+    const auto a = circle(V(0, 0, 0), V(1, 0, 0), V(0, 1, 0));
+    auto b = circle(V(1, 0, 0), V(1, 0, 0), V(0, 0, 1), 37);
+    int snapped = 0;
+    for (Vec3& q : b)
+        for (const Vec3& p : a) {
+            const Vec3 off = q - p;
+            const Vec3 across = off - off.dot(d) * d;
+            if (across.norm() < 0.1 && std::abs(off.dot(d)) > 0.2) {
+                q = p + off.dot(d) * d;
+                ++snapped;
+                break;
+            }
+        }
+    ASSERT_GT(snapped, 0);
+    const double lk = linking_number(a, b);
+    ASSERT_LT(distance_to_integer(lk), 1e-6);
+    EXPECT_EQ(std::abs(std::lround(lk)), 1);
+    EXPECT_EQ(crossing_linking_number(a, b), std::lround(lk));
+    EXPECT_EQ(crossing_linking_number(b, a), std::lround(linking_number(b, a)));
+    EXPECT_TRUE(links_once(a, b));
+}
+
 TEST(CheckerLinkingNumber, HopfLinkOfToriIsOne) {
     const Mesh a = sh::torus(1.0, 0.25);
     const Mesh b = hopf_partner(1.0, 0.25);

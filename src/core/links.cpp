@@ -86,12 +86,17 @@ double linking_number(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     return total / (4.0 * M_PI);
 }
 
+Vec3 shadow_direction() {
+    // Away from the axes and their diagonals, so that the rows and columns of a modelled ring do
+    // not line up in the shadow.
+    return Vec3(0.5714, 0.3162, 0.7571).normalized();
+}
+
 int crossing_linking_number(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
     if (a.size() < 3 || b.size() < 3) throw std::invalid_argument("crossing_linking_number: each curve needs >= 3 points");
     auto gauss = [&] { return static_cast<int>(std::lround(linking_number(a, b))); };
-    // The shadows on the plane normal to a fixed direction, away from the axes and their
-    // diagonals so that the rows and columns of a modelled ring do not line up in it.
-    const Vec3 d = Vec3(0.5714, 0.3162, 0.7571).normalized();
+    // The shadows on the plane normal to shadow_direction.
+    const Vec3 d = shadow_direction();
     const Vec3 e1 = d.cross(Vec3(0.0, 0.0, 1.0)).normalized(), e2 = d.cross(e1);
     struct Shadow {
         std::vector<Eigen::Vector2d> p;

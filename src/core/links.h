@@ -26,11 +26,14 @@ double linking_number(const std::vector<Vec3>& closed_a, const std::vector<Vec3>
 /// The same linking number, counted in a projection: half the sum over the crossings of the two
 /// polygons' shadows along a fixed generic direction of the signs of the crossings, which for a
 /// pair of segments is the sign of the Gauss integrand (the integer the Gauss integral is within
-/// rounding of, at about a twentieth of its cost: no square roots or arc sines). Each crossing is
+/// rounding of, without its square roots and arc sines). Each crossing is
 /// decided by floating-point orientations held to an error bound; when one is too close to call
 /// (a shadow's vertex on the other's edge, two segments nearly meeting in space), the answer is the
 /// Gauss integral's, rounded. \throw std::invalid_argument fewer than 3 points in a curve
 int crossing_linking_number(const std::vector<Vec3>& closed_a, const std::vector<Vec3>& closed_b);
+
+/// The unit direction crossing_linking_number casts its shadows along.
+Vec3 shadow_direction();
 
 /// Do two rings interlock once, given their centre lines (|crossing_linking_number| is 1)? False
 /// when either line has fewer than 3 points (a degenerate ring links nothing).

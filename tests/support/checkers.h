@@ -44,6 +44,7 @@ std::vector<Mesh> split_elements(const Mesh& mesh, const std::vector<int>& eleme
 using meshquilt::linking_number;
 using meshquilt::links_once;
 using meshquilt::crossing_linking_number;
+using meshquilt::shadow_direction;
 using meshquilt::ring_centerline;
 
 /// The linking number of the centre lines of two ring-like elements, rounded to an integer.
